@@ -1,0 +1,30 @@
+#pragma once
+// The WEFM energy (METHOD §5) as a Hermitian matrix K = A^H A + sum_d mu B_d^H W_d B_d over uses.
+#include <vector>
+
+#include "wefm/core/coefficients.hpp"
+
+namespace wefm {
+
+// sigma_h = alpha_h + i beta_h rho_h^s for every half-edge (rho = 1 when rho is empty or s == 0).
+std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s);
+
+// rho_h = L_h / |z_I2 - z_I1| from a layout z (normalised units); degenerate UV edges give rho = 1.
+std::vector<double> compute_rho(const TriMesh& mesh, const Topology& topo, const Coefficients& c, const VectorXc& z);
+
+// w_h of eq. 9: (1/beta_h) (sum of 1/beta over the half-edges opposite the same use)^(-k).
+std::vector<double> compute_weights(const Topology& topo, const Coefficients& c, double k);
+
+// Surface term operator A (one row per use, eq. 7) with weights of eq. 9.
+SpMatC assemble_surface_operator(const Topology& topo, const Coefficients& c, const std::vector<Complex>& sigma, double k);
+
+// Boundary term operator (eq. 10) with rows already scaled by sqrt(mu / l_bar).
+SpMatC assemble_boundary_operator(const TriMesh& mesh, const Topology& topo, const Coefficients& c, double mu);
+
+// K = A^H A (+ B^H B). Full Hermitian matrix.
+SpMatC assemble_energy(const SpMatC& A, const SpMatC* B);
+
+// Energy value |A z|^2 + |B z|^2.
+double energy_value(const SpMatC& A, const SpMatC* B, const VectorXc& z);
+
+}  // namespace wefm

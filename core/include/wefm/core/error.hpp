@@ -1,0 +1,38 @@
+#pragma once
+// Errors raised inside the core. The C API turns each into its status code and message; nothing
+// else in the core reports failure, so every failure carries a precise, user-facing message.
+#include <stdexcept>
+#include <string>
+
+namespace wefm {
+
+// Values equal the C API's wefm_status codes so the boundary translation is a cast.
+enum class Errc : int {
+  invalid_argument = 2,
+  out_of_range = 3,
+  invalid_state = 5,
+  invalid_mesh = 6,
+  invalid_topology = 7,
+  invalid_constraint = 8,
+  singular = 9,
+  not_positive_definite = 10,
+  not_converged = 11,
+  cancelled = 12,
+  out_of_memory = 13,
+  io = 14,
+  unsupported = 15,
+  internal = 99,
+};
+
+class Error : public std::runtime_error {
+ public:
+  Error(Errc code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  Errc code() const noexcept { return code_; }
+
+ private:
+  Errc code_;
+};
+
+[[noreturn]] inline void fail(Errc code, const std::string& message) { throw Error(code, message); }
+
+}  // namespace wefm

@@ -1,0 +1,69 @@
+#pragma once
+// The WEFM solution process (METHOD §7): conformal solve with a two-step gauge, repeated-edge
+// decisions, continuation in s with a rho fixed point per step, quality.
+#include <array>
+#include <atomic>
+#include <functional>
+#include <map>
+#include <vector>
+
+#include "wefm/core/options.hpp"
+#include "wefm/core/partitioned_kkt.hpp"
+#include "wefm/core/quality.hpp"
+
+namespace wefm {
+
+struct StepInfo {
+  double s = 0;
+  int iterations = 0;
+  double rho_change = 0;
+};
+
+struct Timings {
+  double topology = 0, coefficients = 0, assembly = 0, analysis = 0, factorization = 0, solve = 0,
+         continuation = 0, quality = 0, total = 0;
+};
+
+struct SolveReport {
+  Quality quality;
+  double s = 0;
+  bool converged = true;
+  Method method = Method::Global;
+  int s_steps = 0, rho_iterations = 0;
+  double rho_change = 0;
+  FactorCounters counters;
+  std::int64_t iterative_iterations = 0;
+  bool auto_cut = false;
+  Index degenerate_triangles = 0;
+  Timings time;
+  double peak_memory_mb = 0;
+};
+
+struct FlattenResult {
+  VectorXc uv;  // per use, in the input's length unit
+  std::vector<EdgeMode> edge_modes;  // per edge, Auto resolved; Free for non-repeated edges
+  std::vector<std::array<double, 5>> edge_scores;  // per edge, indexed by EdgeMode; NaN = not tried
+  std::vector<StepInfo> steps;
+  SolveReport report;
+};
+
+// Return false to cancel.
+using ProgressFn = std::function<bool(double fraction, const char* stage)>;
+
+struct FlattenInput {
+  const TriMesh* mesh = nullptr;
+  const Topology* topo = nullptr;
+  Options options;
+  std::vector<LinearRow> constraints;  // caller constraints over uses, right-hand sides in input units
+  std::map<Index, EdgeMode> edge_modes; // forced modes per edge
+  ProgressFn progress;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+// Throws Error on failure; Error(not_converged) carries no result, so callers wanting the partial
+// result read FlattenResult::report.converged instead (flatten never throws for non-convergence).
+FlattenResult flatten(const FlattenInput& input);
+
+double peak_memory_mb();
+
+}  // namespace wefm

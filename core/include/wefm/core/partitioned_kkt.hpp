@@ -1,0 +1,61 @@
+#pragma once
+// Constrained minimisation of z^H K z (METHOD §5, §7 "matrix partitioning").
+//
+// K is singular (translation, and similarity on developable faces), so two uses x0, x1 are split
+// off and the remaining point block K_PP, positive definite, is factorised once. Every constraint
+// set (gauges, caller constraints, repeated-edge candidates) is then solved through a small dense
+// system in (z_x0, z_x1, multipliers): the Schur complement against K_PP. Testing a constraint set
+// costs a few cached solves and one final solve, never a refactorisation.
+#include <unordered_map>
+#include <vector>
+
+#include "wefm/core/sparse_cholesky.hpp"
+
+namespace wefm {
+
+// sum_j coef_j z_{use_j} = rhs
+struct LinearRow {
+  std::vector<std::pair<Index, Complex>> terms;
+  Complex rhs{0.0, 0.0};
+};
+
+class PartitionedKKT {
+ public:
+  explicit PartitionedKKT(Backend backend) : chol_(backend) {}
+
+  // Numeric factorisation of K_PP (the symbolic analysis is reused while the pattern is unchanged).
+  void set_matrix(const SpMatC& K, Index x0, Index x1);
+
+  // min z^H K z  s.t.  rows, and sum_i eta_i z_i = 0 when eta is given.
+  // Throws Error(singular) when the constraints contradict each other.
+  VectorXc solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta);
+
+  // Precompute the columns for every use in `uses` (so later solves touching them are cheap).
+  void prepare(const std::vector<Index>& uses, const Eigen::VectorXd* eta);
+
+  FactorCounters& counters() { return chol_.counters(); }
+
+ private:
+  struct Column {
+    Eigen::VectorXcd probe;  // K_PP^{-1} source, restricted to the probe uses
+    Complex eta_dot{0, 0};   // eta_P . (K_PP^{-1} source)
+  };
+  void build_cache(const std::vector<Index>& universe, const Eigen::VectorXd* eta);
+  Index p_index(Index use) const { return p_of_[static_cast<size_t>(use)]; }
+
+  SparseCholesky chol_;
+  Index n_ = 0, x_[2] = {-1, -1};
+  std::vector<Index> p_of_;     // use -> index in P, or -1 for x0/x1
+  Eigen::SparseMatrix<Complex> K_PX_;  // |P| x 2
+  Eigen::Matrix2cd K_XX_;
+  // cache
+  bool cache_valid_ = false;
+  const Eigen::VectorXd* cache_eta_ = nullptr;
+  std::vector<Index> universe_;  // uses (not x) with cached unit columns
+  std::vector<Index> probe_;     // P indices where columns are sampled: universe + neighbours of x
+  std::unordered_map<Index, Index> probe_pos_;  // P index -> position in probe_
+  std::unordered_map<Index, Column> unit_;      // use -> column of e_use
+  Column col_x_[2], col_eta_;
+};
+
+}  // namespace wefm

@@ -1,0 +1,17 @@
+#pragma once
+// Constraint rows for the modes of a repeated edge (METHOD §6, plus rotational periodicity).
+#include <vector>
+
+#include "wefm/core/partitioned_kkt.hpp"
+#include "wefm/core/topology.hpp"
+
+namespace wefm {
+
+// Rows making the edge's two sides obey `mode` (none for Free). `rotation` = e^{i theta} for
+// Rotational. Rows that reduce to 0 = 0 (a seam end shared by both sides) are dropped.
+std::vector<LinearRow> repeated_edge_rows(const RepeatedEdge& edge, EdgeMode mode, Complex rotation = {1, 0});
+
+// Best rotation e^{i theta} taking side b's chain onto side a's in layout z (least squares).
+Complex estimate_rotation(const RepeatedEdge& edge, const VectorXc& z);
+
+}  // namespace wefm

@@ -1,0 +1,42 @@
+#pragma once
+// Cholesky factorisation of a Hermitian positive definite sparse matrix, through CHOLMOD when the
+// build has it and Eigen's SimplicialLDLT otherwise. Symbolic analysis and numeric factorisation
+// are separate so callers with a fixed sparsity pattern analyse once; counters prove it.
+#include <memory>
+
+#include "wefm/core/types.hpp"
+
+namespace wefm {
+
+enum class Backend { Auto, Cholmod, Eigen };
+
+struct FactorCounters {
+  std::int64_t analyses = 0, factorizations = 0, solves = 0;
+  double time_analysis = 0, time_factorization = 0, time_solve = 0;
+};
+
+bool have_cholmod();
+
+class SparseCholesky {
+ public:
+  explicit SparseCholesky(Backend backend = Backend::Auto);
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+  // Analyses the pattern when it differs from the last one, then factorises numerically.
+  // Throws Error(not_positive_definite) when the matrix is not positive definite.
+  void factorize(const SpMatC& K);
+  Eigen::MatrixXcd solve(const Eigen::MatrixXcd& rhs);
+  Index size() const { return n_; }
+  FactorCounters& counters() { return counters_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  FactorCounters counters_;
+  Index n_ = 0;
+  std::vector<int> pattern_outer_, pattern_inner_;
+};
+
+}  // namespace wefm

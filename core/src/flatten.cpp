@@ -1,0 +1,287 @@
+#include "wefm/core/flatten.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "wefm/core/energy.hpp"
+#include "wefm/core/error.hpp"
+#include "wefm/core/gauge.hpp"
+#include "wefm/core/repeated_edges.hpp"
+#include "wefm/core/rollout.hpp"
+#include "wefm/core/scale.hpp"
+
+namespace wefm {
+
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+class Stage {
+ public:
+  Stage(const FlattenInput& in) : in_(in) {}
+  void check(double fraction, const char* stage) const {
+    if (in_.cancel && in_.cancel->load(std::memory_order_relaxed)) fail(Errc::cancelled, std::string("cancelled during ") + stage);
+    if (in_.progress && !in_.progress(fraction, stage)) fail(Errc::cancelled, std::string("cancelled by the progress callback during ") + stage);
+  }
+
+ private:
+  const FlattenInput& in_;
+};
+
+double max_rel_change(const std::vector<double>& a, const std::vector<double>& b) {
+  double m = 0;
+  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(b[i] / a[i] - 1.0));
+  return m;
+}
+
+}  // namespace
+
+double peak_memory_mb() {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return 0.0;
+}
+
+FlattenResult flatten(const FlattenInput& in) {
+  const double t_start = now();
+  const TriMesh& mesh = *in.mesh;
+  const Topology& tp = *in.topo;
+  const Options& opt = in.options;
+  validate_options(opt);
+  Stage stage(in);
+  FlattenResult res;
+  SolveReport& rep = res.report;
+  rep.method = opt.method;
+  stage.check(0.0, "coefficients");
+
+  double t0 = now();
+  const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta);
+  rep.time.coefficients = now() - t0;
+  rep.degenerate_triangles = coef.degenerate_triangles;
+  const double ls = coef.length_scale;
+  const Eigen::VectorXd eta = Eigen::Map<const Eigen::VectorXd>(coef.use_area.data(), static_cast<Index>(coef.use_area.size()));
+
+  // Caller rows in normalised units.
+  std::vector<LinearRow> caller = in.constraints;
+  for (auto& r : caller) r.rhs /= ls;
+  const VectorXc z_ref = planar_projection(mesh, tp, ls);
+  GaugeChoice gauge = choose_gauges(caller, z_ref, eta);
+  const Eigen::VectorXd* eta_ptr = gauge.translation ? &eta : nullptr;
+
+  // Modes per repeated edge: forced, or the default, or Auto (decided below).
+  const size_t ne = tp.edges.size();
+  res.edge_modes.assign(ne, EdgeMode::Free);
+  res.edge_scores.assign(ne, {std::nan(""), std::nan(""), std::nan(""), std::nan(""), std::nan("")});
+  std::vector<EdgeMode> mode(ne, EdgeMode::Free);
+  std::vector<Complex> rotation(ne, Complex(1, 0));
+  std::vector<Index> auto_edges;
+  for (const RepeatedEdge& r : tp.repeated) {
+    auto it = in.edge_modes.find(r.edge);
+    EdgeMode m = it != in.edge_modes.end() ? it->second : opt.default_edge_mode;
+    if (m == EdgeMode::Auto) {
+      auto_edges.push_back(r.edge);
+      m = EdgeMode::Free;
+    }
+    mode[static_cast<size_t>(r.edge)] = m;
+  }
+
+  if (opt.method == Method::Rollout) {
+    if (!tp.repeated.empty())
+      for (const RepeatedEdge& r : tp.repeated)
+        if (mode[static_cast<size_t>(r.edge)] != EdgeMode::Free)
+          fail(Errc::unsupported, "the roll-out method supports only free repeated edges (edge " + std::to_string(r.edge) + " is not free); use the global method");
+    RolloutResult rr = rollout(mesh, tp, coef, caller, opt, [&](double f) { stage.check(f, "rollout"); });
+    res.uv = rr.z * ls;
+    rep.iterative_iterations = rr.sweeps;
+    rep.converged = rr.converged;
+    rep.s = 1.0;
+    t0 = now();
+    rep.quality = evaluate_quality(mesh, tp, res.uv);
+    rep.time.quality = now() - t0;
+    rep.time.total = now() - t_start;
+    rep.peak_memory_mb = peak_memory_mb();
+    return res;
+  }
+
+  // --- Conformal solve with the two-step gauge --------------------------------------------------
+  stage.check(0.05, "assembly");
+  t0 = now();
+  const SpMatC B = assemble_boundary_operator(mesh, tp, coef, opt.boundary_weight);
+  const SpMatC* Bp = B.rows() ? &B : nullptr;
+  std::vector<double> rho;  // empty: s = 0
+  SpMatC A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, 0.0), opt.k);
+  SpMatC K = assemble_energy(A, Bp);
+  rep.time.assembly += now() - t0;
+  const auto seg = longest_loop_segment(tp, coef, mesh, tp.outer_loop);
+  PartitionedKKT kkt(opt.backend);
+  stage.check(0.1, "factorise");
+  kkt.set_matrix(K, seg.first, seg.second);
+
+  auto rows_with = [&](const std::vector<EdgeMode>& md, const std::vector<Complex>& rot, const LinearRow* vec) {
+    std::vector<LinearRow> rows = caller;
+    for (const RepeatedEdge& r : tp.repeated) {
+      auto add = repeated_edge_rows(r, md[static_cast<size_t>(r.edge)], rot[static_cast<size_t>(r.edge)]);
+      rows.insert(rows.end(), add.begin(), add.end());
+    }
+    if (vec) rows.push_back(*vec);
+    return rows;
+  };
+  LinearRow vec;
+  if (gauge.vector) {
+    const double L = (mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(seg.second)])] -
+                      mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(seg.first)])]).norm() / ls;
+    vec.terms = {{seg.second, 1.0}, {seg.first, -1.0}};
+    vec.rhs = L;
+  }
+  stage.check(0.2, "solve");
+  VectorXc z = kkt.solve(rows_with(mode, rotation, gauge.vector ? &vec : nullptr), eta_ptr);
+  if (gauge.vector) {
+    // Fixing one short facet edge lets its local error tilt the whole layout; fix the vector
+    // between two far-apart boundary uses instead. Same factorisation.
+    const auto fp = far_pair(tp, z, tp.outer_loop);
+    if (fp.first != fp.second) {
+      vec.terms = {{fp.second, 1.0}, {fp.first, -1.0}};
+      vec.rhs = z[fp.second] - z[fp.first];
+      z = kkt.solve(rows_with(mode, rotation, &vec), eta_ptr);
+    }
+  }
+  auto score_of = [&](const VectorXc& zz) {
+    const double tq = now();
+    const double s = evaluate_quality(mesh, tp, zz).score;
+    rep.time.quality += now() - tq;
+    return s;
+  };
+
+  // --- Repeated edges: choose each automatic edge's mode by score (METHOD §7 step 2) -----------
+  if (!auto_edges.empty()) {
+    stage.check(0.3, "repeated edges");
+    std::vector<Index> seam_uses;
+    for (const RepeatedEdge& r : tp.repeated) {
+      seam_uses.insert(seam_uses.end(), r.side_a.begin(), r.side_a.end());
+      seam_uses.insert(seam_uses.end(), r.side_b.begin(), r.side_b.end());
+    }
+    kkt.prepare(seam_uses, eta_ptr);
+    double current = score_of(z);
+    // Coordinate descent over edges: each automatic edge tries every mode with the others fixed;
+    // two passes at most. Cost: 4 x edges x passes small dense solves, one factorisation in all.
+    for (int pass = 0; pass < 2; ++pass) {
+      bool changed = false;
+      for (Index e : auto_edges) {
+        const RepeatedEdge& r = tp.repeated[static_cast<size_t>(tp.edge_repeated[static_cast<size_t>(e)])];
+        std::vector<EdgeMode> md = mode;
+        md[static_cast<size_t>(e)] = EdgeMode::Free;
+        VectorXc z_free = z;
+        double best = -std::numeric_limits<double>::infinity();
+        EdgeMode best_mode = mode[static_cast<size_t>(e)];
+        VectorXc best_z = z;
+        for (EdgeMode cand : {EdgeMode::Free, EdgeMode::Periodic, EdgeMode::Scar, EdgeMode::Rotational}) {
+          md[static_cast<size_t>(e)] = cand;
+          std::vector<Complex> rot = rotation;
+          if (cand == EdgeMode::Rotational) rot[static_cast<size_t>(e)] = estimate_rotation(r, z_free);
+          double sc;
+          VectorXc zc;
+          try {
+            zc = kkt.solve(rows_with(md, rot, gauge.vector ? &vec : nullptr), eta_ptr);
+            sc = score_of(zc);
+          } catch (const Error& err) {
+            if (err.code() != Errc::singular) throw;
+            sc = -std::numeric_limits<double>::infinity();
+          }
+          if (cand == EdgeMode::Free) z_free = zc;
+          res.edge_scores[static_cast<size_t>(e)][static_cast<size_t>(cand)] = std::isfinite(sc) ? sc : -3.0;
+          // A constrained mode must beat free clearly: constraints are only worth their rigidity.
+          if (sc > best + 1e-9) {
+            best = sc;
+            best_mode = cand;
+            best_z = zc;
+            if (cand == EdgeMode::Rotational) rotation[static_cast<size_t>(e)] = rot[static_cast<size_t>(e)];
+          }
+        }
+        if (best_mode != mode[static_cast<size_t>(e)]) changed = true;
+        mode[static_cast<size_t>(e)] = best_mode;
+        z = best_z;
+        current = best;
+      }
+      if (!changed) break;
+    }
+    (void)current;
+  }
+  for (size_t e = 0; e < ne; ++e) res.edge_modes[e] = mode[e];
+  const std::vector<LinearRow> rows0 = rows_with(mode, rotation, nullptr);
+
+  // --- Continuation in s ------------------------------------------------------------------------
+  const bool early = opt.s > 0 && opt.score_threshold <= 1.0 && score_of(z) >= opt.score_threshold;
+  double s_cur = 0;
+  const double t_cont = now();
+  while (opt.s > 0 && !early && s_cur < opt.s - 1e-12) {
+    const double s_next = std::min(opt.s, s_cur + opt.s_step);
+    StepInfo step;
+    step.s = s_next;
+    bool conv = false;
+    for (int it = 0; it < opt.max_rho_iterations; ++it) {
+      stage.check(0.4 + 0.5 * (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / opt.s, "continuation");
+      t0 = now();
+      rho = compute_rho(mesh, tp, coef, z);
+      A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, s_next), opt.k);
+      K = assemble_energy(A, Bp);
+      rep.time.assembly += now() - t0;
+      kkt.set_matrix(K, seg.first, seg.second);
+      std::vector<LinearRow> rows = rows0;
+      if (gauge.vector) rows.push_back(vec);
+      VectorXc zn = kkt.solve(rows, eta_ptr);
+      if (gauge.vector) {
+        // The vector gauge fixes size; for s > 0 the energy prefers one size, so follow it.
+        const double a = optimal_scale(tp, coef, zn, s_next, opt.k, gauge.center);
+        zn = ((zn.array() - gauge.center) * a + gauge.center).matrix();
+        vec.rhs *= a;
+      }
+      const std::vector<double> rho_new = compute_rho(mesh, tp, coef, zn);
+      step.rho_change = max_rel_change(rho, rho_new);
+      step.iterations = it + 1;
+      z = zn;
+      ++rep.rho_iterations;
+      if (step.rho_change < opt.rho_tolerance) {
+        conv = true;
+        break;
+      }
+    }
+    if (!conv) rep.converged = false;
+    res.steps.push_back(step);
+    ++rep.s_steps;
+    rep.rho_change = step.rho_change;
+    s_cur = s_next;
+  }
+  rep.time.continuation = now() - t_cont;
+  rep.s = early ? 0.0 : opt.s;
+
+  // s = 0 is scale-free: return the layout with the 3D area.
+  if ((opt.s == 0 || early) && gauge.vector) {
+    double uv_area = 0, a3 = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
+      uv_area += 0.5 * ((u1 - u0).real() * (u2 - u0).imag() - (u1 - u0).imag() * (u2 - u0).real());
+      a3 += coef.tri_area[t];
+    }
+    if (uv_area > 0) z = ((z.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
+  }
+  stage.check(0.95, "quality");
+  res.uv = z * ls;
+  t0 = now();
+  rep.quality = evaluate_quality(mesh, tp, res.uv);
+  rep.time.quality += now() - t0;
+  rep.counters = kkt.counters();
+  rep.time.analysis = rep.counters.time_analysis;
+  rep.time.factorization = rep.counters.time_factorization;
+  rep.time.solve = rep.counters.time_solve;
+  rep.time.total = now() - t_start;
+  rep.peak_memory_mb = peak_memory_mb();
+  stage.check(1.0, "done");
+  return res;
+}
+
+}  // namespace wefm

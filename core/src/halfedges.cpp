@@ -1,0 +1,71 @@
+#include "wefm/core/halfedges.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "wefm/core/error.hpp"
+
+namespace wefm {
+
+HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count) {
+  const Index nh = static_cast<Index>(triangles.size() * 3);
+  HalfEdges he;
+  he.vertex_count = vertex_count;
+  he.twin.assign(static_cast<size_t>(nh), -1);
+  // Sort half-edges by their undirected edge so partners are adjacent: O(n log n), no hashing.
+  struct Key {
+    std::uint64_t edge;
+    Index h;
+  };
+  std::vector<Key> keys(static_cast<size_t>(nh));
+  for (Index h = 0; h < nh; ++h) {
+    const Tri& t = triangles[static_cast<size_t>(h / 3)];
+    std::uint64_t a = static_cast<std::uint32_t>(t[h % 3]), b = static_cast<std::uint32_t>(t[(h % 3 + 1) % 3]);
+    if (a > b) std::swap(a, b);
+    keys[static_cast<size_t>(h)] = {(a << 32) | b, h};
+  }
+  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) { return x.edge < y.edge || (x.edge == y.edge && x.h < y.h); });
+  auto from = [&](Index h) { return triangles[static_cast<size_t>(h / 3)][h % 3]; };
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i + 1;
+    while (j < keys.size() && keys[j].edge == keys[i].edge) ++j;
+    const Index a = static_cast<Index>(keys[i].edge >> 32), b = static_cast<Index>(keys[i].edge & 0xffffffffu);
+    if (j - i > 2)
+      fail(Errc::invalid_mesh, "non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) + "): shared by " +
+                                   std::to_string(j - i) + " triangles (e.g. " + std::to_string(keys[i].h / 3) + ", " +
+                                   std::to_string(keys[i + 1].h / 3) + ", " + std::to_string(keys[i + 2].h / 3) + ")");
+    if (j - i == 2) {
+      const Index h0 = keys[i].h, h1 = keys[i + 1].h;
+      if (from(h0) == from(h1))
+        fail(Errc::invalid_mesh, "inconsistent triangle orientation: triangles " + std::to_string(h0 / 3) + " and " +
+                                     std::to_string(h1 / 3) + " both traverse edge (" + std::to_string(from(h0)) + ", " +
+                                     std::to_string(from(h0) == a ? b : a) + ") the same way");
+      he.twin[static_cast<size_t>(h0)] = h1;
+      he.twin[static_cast<size_t>(h1)] = h0;
+    }
+    i = j;
+  }
+  return he;
+}
+
+HalfEdgeLookup::HalfEdgeLookup(const std::vector<Tri>& triangles, Index vertex_count) : tris_(&triangles) {
+  start_.assign(static_cast<size_t>(vertex_count) + 1, 0);
+  for (const Tri& t : triangles)
+    for (Index v : t) ++start_[static_cast<size_t>(v) + 1];
+  for (size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
+  outgoing_.resize(triangles.size() * 3);
+  std::vector<Index> fill(start_.begin(), start_.end() - 1);
+  for (Index h = 0; h < static_cast<Index>(triangles.size() * 3); ++h)
+    outgoing_[static_cast<size_t>(fill[static_cast<size_t>(triangles[static_cast<size_t>(h / 3)][h % 3])]++)] = h;
+}
+
+Index HalfEdgeLookup::find(Index a, Index b) const {
+  if (a < 0 || b < 0 || static_cast<size_t>(a) + 1 >= start_.size()) return -1;
+  for (Index k = start_[static_cast<size_t>(a)]; k < start_[static_cast<size_t>(a) + 1]; ++k) {
+    const Index h = outgoing_[static_cast<size_t>(k)];
+    if ((*tris_)[static_cast<size_t>(h / 3)][(h % 3 + 1) % 3] == b) return h;
+  }
+  return -1;
+}
+
+}  // namespace wefm

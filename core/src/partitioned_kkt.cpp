@@ -1,0 +1,206 @@
+#include "wefm/core/partitioned_kkt.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <string>
+
+#include "wefm/core/error.hpp"
+
+namespace wefm {
+
+void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1) {
+  n_ = static_cast<Index>(K.rows());
+  if (x0 == x1 || x0 < 0 || x1 < 0 || x0 >= n_ || x1 >= n_) fail(Errc::internal, "partition uses out of range");
+  x_[0] = x0;
+  x_[1] = x1;
+  p_of_.assign(static_cast<size_t>(n_), -1);
+  Index k = 0;
+  for (Index u = 0; u < n_; ++u)
+    if (u != x0 && u != x1) p_of_[static_cast<size_t>(u)] = k++;
+  const Index np = n_ - 2;
+  std::vector<Eigen::Triplet<Complex>> pp, px;
+  pp.reserve(static_cast<size_t>(K.nonZeros()));
+  K_XX_.setZero();
+  for (Index c = 0; c < K.outerSize(); ++c)
+    for (SpMatC::InnerIterator it(K, c); it; ++it) {
+      const Index r = static_cast<Index>(it.row());
+      const Index pr = p_of_[static_cast<size_t>(r)], pc = p_of_[static_cast<size_t>(c)];
+      if (pr >= 0 && pc >= 0) pp.emplace_back(pr, pc, it.value());
+      else if (pr >= 0) px.emplace_back(pr, c == x0 ? 0 : 1, it.value());
+      else if (pc < 0) K_XX_(r == x0 ? 0 : 1, c == x0 ? 0 : 1) = it.value();
+    }
+  SpMatC Kpp(np, np);
+  Kpp.setFromTriplets(pp.begin(), pp.end());
+  Kpp.makeCompressed();
+  K_PX_.resize(np, 2);
+  K_PX_.setFromTriplets(px.begin(), px.end());
+  chol_.factorize(Kpp);
+  cache_valid_ = false;
+  unit_.clear();
+}
+
+void PartitionedKKT::build_cache(const std::vector<Index>& universe, const Eigen::VectorXd* eta) {
+  const Index np = n_ - 2;
+  universe_ = universe;
+  probe_.clear();
+  probe_pos_.clear();
+  auto add_probe = [&](Index p) {
+    if (probe_pos_.emplace(p, static_cast<Index>(probe_.size())).second) probe_.push_back(p);
+  };
+  for (Index u : universe_) add_probe(p_index(u));
+  for (int j = 0; j < 2; ++j)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, j); it; ++it) add_probe(static_cast<Index>(it.row()));
+  // Sources: K_PX columns, eta_P, and unit vectors of the universe; solved in batches.
+  const Index nsrc = 2 + (eta ? 1 : 0) + static_cast<Index>(universe_.size());
+  Eigen::VectorXd eta_p;
+  if (eta) {
+    eta_p.resize(np);
+    for (Index u = 0; u < n_; ++u)
+      if (p_index(u) >= 0) eta_p[p_index(u)] = (*eta)[u];
+  }
+  const Index batch = 64;
+  unit_.clear();
+  for (Index s0 = 0; s0 < nsrc; s0 += batch) {
+    const Index nb = std::min(batch, nsrc - s0);
+    Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(np, nb);
+    for (Index j = 0; j < nb; ++j) {
+      const Index s = s0 + j;
+      if (s < 2) B.col(j) = Eigen::VectorXcd(K_PX_.col(s));
+      else if (eta && s == 2) B.col(j) = eta_p.cast<Complex>();
+      else B(p_index(universe_[static_cast<size_t>(s - 2 - (eta ? 1 : 0))]), j) = 1.0;
+    }
+    Eigen::MatrixXcd W = chol_.solve(B);
+    for (Index j = 0; j < nb; ++j) {
+      const Index s = s0 + j;
+      Column col;
+      col.probe.resize(static_cast<Index>(probe_.size()));
+      for (size_t q = 0; q < probe_.size(); ++q) col.probe[static_cast<Index>(q)] = W(probe_[q], j);
+      if (eta) col.eta_dot = eta_p.cast<Complex>().dot(W.col(j));  // conj(eta) . w, eta real
+      if (s < 2) col_x_[s] = std::move(col);
+      else if (eta && s == 2) col_eta_ = std::move(col);
+      else unit_[universe_[static_cast<size_t>(s - 2 - (eta ? 1 : 0))]] = std::move(col);
+    }
+  }
+  cache_eta_ = eta;
+  cache_valid_ = true;
+}
+
+void PartitionedKKT::prepare(const std::vector<Index>& uses, const Eigen::VectorXd* eta) {
+  std::vector<Index> u;
+  for (Index x : uses)
+    if (x != x_[0] && x != x_[1]) u.push_back(x);
+  if (cache_valid_) u.insert(u.end(), universe_.begin(), universe_.end());
+  std::sort(u.begin(), u.end());
+  u.erase(std::unique(u.begin(), u.end()), u.end());
+  build_cache(u, eta);
+}
+
+VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta) {
+  for (size_t r = 0; r < rows.size(); ++r)
+    for (auto& [u, g] : rows[r].terms)
+      if (u < 0 || u >= n_) fail(Errc::invalid_constraint, "constraint " + std::to_string(r) + " names use " + std::to_string(u) + ", which does not exist (" + std::to_string(n_) + " uses)");
+  bool covered = cache_valid_ && cache_eta_ == eta;
+  if (covered)
+    for (const auto& row : rows)
+      for (auto& [u, g] : row.terms)
+        if (u != x_[0] && u != x_[1] && !unit_.count(u)) covered = false;
+  if (!covered) {
+    std::vector<Index> need;
+    for (const auto& row : rows)
+      for (auto& [u, g] : row.terms) need.push_back(u);
+    if (cache_valid_ && cache_eta_ != eta) cache_valid_ = false;
+    prepare(need, eta);
+  }
+  // Rows: caller rows then the dense eta row.
+  const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
+  const Index N = 2 + m;
+  // W columns restricted to the probe, for x (2) and each row's C_P^H column.
+  const Index nq = static_cast<Index>(probe_.size());
+  Eigen::MatrixXcd Wq(nq, N);  // column j: K_PP^{-1} (source j) sampled at the probe
+  Eigen::VectorXcd Weta(N);    // eta . column j
+  Eigen::MatrixXcd CX = Eigen::MatrixXcd::Zero(m, 2);
+  Eigen::VectorXcd d(m);
+  for (int j = 0; j < 2; ++j) {
+    Wq.col(j) = col_x_[j].probe;
+    Weta[j] = col_x_[j].eta_dot;
+  }
+  for (Index r = 0; r < m; ++r) {
+    Eigen::VectorXcd w = Eigen::VectorXcd::Zero(nq);
+    Complex we{0, 0};
+    if (r < static_cast<Index>(rows.size())) {
+      for (auto& [u, g] : rows[static_cast<size_t>(r)].terms) {
+        if (u == x_[0] || u == x_[1]) {
+          CX(r, u == x_[0] ? 0 : 1) += g;
+          continue;
+        }
+        const Column& c = unit_.at(u);
+        w += std::conj(g) * c.probe;
+        we += std::conj(g) * c.eta_dot;
+      }
+      d[r] = rows[static_cast<size_t>(r)].rhs;
+    } else {
+      w = col_eta_.probe;
+      we = col_eta_.eta_dot;
+      CX(r, 0) = (*eta)[x_[0]];
+      CX(r, 1) = (*eta)[x_[1]];
+      d[r] = 0;
+    }
+    Wq.col(2 + r) = w;
+    Weta[2 + r] = we;
+  }
+  // C_P w for row r and column j: sum over row terms of g * w(at use), or eta . w.
+  auto CPw = [&](Index r, Index j) -> Complex {
+    if (r >= static_cast<Index>(rows.size())) return Weta[j];
+    Complex s{0, 0};
+    for (auto& [u, g] : rows[static_cast<size_t>(r)].terms)
+      if (u != x_[0] && u != x_[1]) s += g * Wq(probe_pos_.at(p_index(u)), j);
+    return s;
+  };
+  auto KXPw = [&](int x, Index j) -> Complex {
+    Complex s{0, 0};
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, x); it; ++it)
+      s += std::conj(it.value()) * Wq(probe_pos_.at(static_cast<Index>(it.row())), j);
+    return s;
+  };
+  Eigen::MatrixXcd M(N, N);
+  Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(N);
+  for (int a = 0; a < 2; ++a)
+    for (Index j = 0; j < N; ++j) {
+      Complex base = j < 2 ? K_XX_(a, j) : std::conj(CX(j - 2, a));
+      M(a, j) = base - KXPw(a, j);
+    }
+  for (Index r = 0; r < m; ++r) {
+    for (Index j = 0; j < N; ++j) M(2 + r, j) = (j < 2 ? CX(r, j) : Complex(0, 0)) - CPw(r, j);
+    rhs[2 + r] = d[r];
+  }
+  // Least squares with a rank test: redundant but consistent constraints are fine; contradictory
+  // ones leave a residual.
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXcd> cod;
+  cod.setThreshold(1e-11);
+  cod.compute(M);
+  Eigen::VectorXcd t = cod.solve(rhs);
+  const double res = (M * t - rhs).norm(), scale = std::max(1.0, rhs.norm());
+  if (!t.allFinite() || res > 1e-7 * scale)
+    fail(Errc::singular, "the constraints contradict each other or leave the layout undetermined (KKT residual " + std::to_string(res / scale) + ")");
+  // Final solve for the point block with the combined right-hand side.
+  const Index np = n_ - 2;
+  Eigen::VectorXcd b = -(K_PX_ * t.head(2));
+  for (Index r = 0; r < m; ++r) {
+    const Complex lam = t[2 + r];
+    if (lam == Complex(0, 0)) continue;
+    if (r < static_cast<Index>(rows.size())) {
+      for (auto& [u, g] : rows[static_cast<size_t>(r)].terms)
+        if (u != x_[0] && u != x_[1]) b[p_index(u)] -= std::conj(g) * lam;
+    } else {
+      for (Index u = 0; u < n_; ++u)
+        if (p_index(u) >= 0) b[p_index(u)] -= (*eta)[u] * lam;
+    }
+  }
+  (void)np;
+  Eigen::VectorXcd y = chol_.solve(b);
+  VectorXc z(n_);
+  for (Index u = 0; u < n_; ++u) z[u] = p_index(u) >= 0 ? y[p_index(u)] : t[u == x_[0] ? 0 : 1];
+  return z;
+}
+
+}  // namespace wefm

@@ -1,0 +1,93 @@
+#include "wefm/core/sparse_cholesky.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <chrono>
+
+#include "wefm/core/error.hpp"
+#ifdef WEFM_HAVE_CHOLMOD
+#include <Eigen/CholmodSupport>
+#endif
+
+namespace wefm {
+
+namespace {
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+}  // namespace
+
+bool have_cholmod() {
+#ifdef WEFM_HAVE_CHOLMOD
+  return true;
+#else
+  return false;
+#endif
+}
+
+struct SparseCholesky::Impl {
+  bool use_cholmod = false;
+#ifdef WEFM_HAVE_CHOLMOD
+  Eigen::CholmodSupernodalLLT<SpMatC, Eigen::Lower> cholmod;
+#endif
+  Eigen::SimplicialLDLT<SpMatC, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+};
+
+SparseCholesky::SparseCholesky(Backend backend) : impl_(std::make_unique<Impl>()) {
+  impl_->use_cholmod = have_cholmod() && backend != Backend::Eigen;
+  if (backend == Backend::Cholmod && !have_cholmod()) fail(Errc::unsupported, "this build of wefm has no CHOLMOD (built with WEFM_WITH_SUITESPARSE=OFF)");
+}
+
+SparseCholesky::~SparseCholesky() = default;
+
+void SparseCholesky::factorize(const SpMatC& K) {
+  const bool same = K.rows() == n_ && K.isCompressed() &&
+                    pattern_outer_.size() == static_cast<size_t>(K.outerSize() + 1) &&
+                    std::equal(pattern_outer_.begin(), pattern_outer_.end(), K.outerIndexPtr()) &&
+                    std::equal(pattern_inner_.begin(), pattern_inner_.end(), K.innerIndexPtr());
+  if (!same) {
+    const double t0 = now();
+    n_ = static_cast<Index>(K.rows());
+    pattern_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1);
+    pattern_inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
+#ifdef WEFM_HAVE_CHOLMOD
+    if (impl_->use_cholmod) impl_->cholmod.analyzePattern(K);
+    else
+#endif
+      impl_->ldlt.analyzePattern(K);
+    ++counters_.analyses;
+    counters_.time_analysis += now() - t0;
+  }
+  const double t0 = now();
+  Eigen::ComputationInfo info;
+#ifdef WEFM_HAVE_CHOLMOD
+  if (impl_->use_cholmod) {
+    impl_->cholmod.factorize(K);
+    info = impl_->cholmod.info();
+  } else
+#endif
+  {
+    impl_->ldlt.factorize(K);
+    info = impl_->ldlt.info();
+    // LDLT succeeds on indefinite matrices; positive definiteness is what the energy promises.
+    if (info == Eigen::Success && (impl_->ldlt.vectorD().real().array() <= 0).any()) info = Eigen::NumericalIssue;
+  }
+  ++counters_.factorizations;
+  counters_.time_factorization += now() - t0;
+  if (info != Eigen::Success) {
+    pattern_outer_.clear();  // force a fresh analysis next time
+    fail(Errc::not_positive_definite, "the energy matrix is not positive definite (a use with no valid prediction, or a face whose triangles are all degenerate)");
+  }
+}
+
+Eigen::MatrixXcd SparseCholesky::solve(const Eigen::MatrixXcd& rhs) {
+  const double t0 = now();
+  Eigen::MatrixXcd x;
+#ifdef WEFM_HAVE_CHOLMOD
+  if (impl_->use_cholmod) x = impl_->cholmod.solve(rhs);
+  else
+#endif
+    x = impl_->ldlt.solve(rhs);
+  counters_.solves += rhs.cols();
+  counters_.time_solve += now() - t0;
+  return x;
+}
+
+}  // namespace wefm

@@ -1,0 +1,195 @@
+#include "wefm/core/trimesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "wefm/core/error.hpp"
+#include "wefm/core/halfedges.hpp"
+#include "wefm/core/union_find.hpp"
+
+namespace wefm {
+
+double triangle_area(const TriMesh& mesh, Index t) {
+  const Tri& f = mesh.triangles[static_cast<size_t>(t)];
+  const Vec3& a = mesh.vertices[static_cast<size_t>(f[0])];
+  return 0.5 * (mesh.vertices[static_cast<size_t>(f[1])] - a).cross(mesh.vertices[static_cast<size_t>(f[2])] - a).norm();
+}
+
+namespace {
+
+std::string tri_str(const TriMesh& m, size_t t) {
+  const Tri& f = m.triangles[t];
+  return "triangle " + std::to_string(t) + " (" + std::to_string(f[0]) + ", " + std::to_string(f[1]) + ", " +
+         std::to_string(f[2]) + ")";
+}
+
+// Triangles sorted by their vertex set: equal neighbours are duplicates.
+std::vector<size_t> sorted_by_vertex_set(const TriMesh& m, std::vector<Tri>& canon) {
+  canon = m.triangles;
+  for (Tri& f : canon) std::sort(f.begin(), f.end());
+  std::vector<size_t> order(canon.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return canon[a] < canon[b] || (canon[a] == canon[b] && a < b); });
+  return order;
+}
+
+// Corners of each vertex grouped into fans across shared edges; more than one fan = non-manifold vertex.
+std::vector<Index> fans_per_vertex(const TriMesh& m, const HalfEdges& he) {
+  const Index nc = static_cast<Index>(m.triangles.size() * 3);
+  UnionFind uf(nc);
+  for (Index h = 0; h < nc; ++h) {
+    const Index g = he.twin[static_cast<size_t>(h)];
+    if (g < h) continue;
+    // h: a->b in tri(h); g: b->a. Corner of a in tri(h) is h, in tri(g) it is next(g).
+    uf.unite(h, HalfEdges::next(g));
+    uf.unite(HalfEdges::next(h), g);
+  }
+  std::vector<Index> fans(m.vertices.size(), 0);
+  for (Index c = 0; c < nc; ++c)
+    if (uf.find(c) == c) ++fans[static_cast<size_t>(m.triangles[static_cast<size_t>(c / 3)][c % 3])];
+  return fans;
+}
+
+}  // namespace
+
+MeshStats compute_stats(const TriMesh& m) {
+  MeshStats s;
+  const size_t nv = m.vertices.size(), nt = m.triangles.size();
+  if (nv) {
+    s.bbox_min = s.bbox_max = m.vertices[0];
+  }
+  for (const Vec3& p : m.vertices) {
+    if (!p.allFinite()) {
+      ++s.non_finite;
+      continue;
+    }
+    s.bbox_min = s.bbox_min.cwiseMin(p);
+    s.bbox_max = s.bbox_max.cwiseMax(p);
+  }
+  std::vector<char> used(nv, 0);
+  std::vector<Tri> good;
+  good.reserve(nt);
+  for (const Tri& f : m.triangles) {
+    bool ok = true;
+    for (Index v : f)
+      if (v < 0 || static_cast<size_t>(v) >= nv) ok = false;
+    if (!ok) {
+      ++s.bad_indices;
+      continue;
+    }
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
+      ++s.repeated_vertex_triangles;
+      ++s.degenerate_triangles;
+      continue;
+    }
+    for (Index v : f) used[static_cast<size_t>(v)] = 1;
+    good.push_back(f);
+  }
+  for (char u : used) s.isolated_vertices += u ? 0 : 1;
+  TriMesh gm{m.vertices, good};
+  double elen = 0;
+  for (size_t t = 0; t < good.size(); ++t) {
+    const double a = triangle_area(gm, static_cast<Index>(t));
+    if (!(a > 0)) ++s.degenerate_triangles;
+    if (std::isfinite(a)) s.area += a;
+    for (int j = 0; j < 3; ++j) elen += (gm.vertices[good[t][j]] - gm.vertices[good[t][(j + 1) % 3]]).norm();
+  }
+  if (!good.empty()) s.mean_edge_length = elen / (3.0 * static_cast<double>(good.size()));
+  std::vector<Tri> canon;
+  auto order = sorted_by_vertex_set(gm, canon);
+  for (size_t i = 1; i < order.size(); ++i)
+    if (canon[order[i]] == canon[order[i - 1]]) ++s.duplicate_triangles;
+  // Edge statistics by sorting directed edges by their undirected key.
+  struct E {
+    std::uint64_t key;
+    Index from, tri;
+  };
+  std::vector<E> es;
+  es.reserve(good.size() * 3);
+  for (size_t t = 0; t < good.size(); ++t)
+    for (int j = 0; j < 3; ++j) {
+      std::uint64_t a = static_cast<std::uint32_t>(good[t][j]), b = static_cast<std::uint32_t>(good[t][(j + 1) % 3]);
+      es.push_back({(std::min(a, b) << 32) | std::max(a, b), good[t][j], static_cast<Index>(t)});
+    }
+  std::sort(es.begin(), es.end(), [](const E& x, const E& y) { return x.key < y.key; });
+  UnionFind comp(static_cast<Index>(good.size()));
+  std::int64_t edges = 0, boundary_edges = 0;
+  for (size_t i = 0; i < es.size();) {
+    size_t j = i + 1;
+    while (j < es.size() && es[j].key == es[i].key) ++j;
+    ++edges;
+    if (j - i == 1) ++boundary_edges;
+    if (j - i > 2) ++s.non_manifold_edges;
+    if (j - i == 2 && es[i].from == es[i + 1].from) ++s.inconsistent_edges;
+    for (size_t k = i + 1; k < j; ++k) comp.unite(es[i].tri, es[k].tri);
+    i = j;
+  }
+  for (Index t = 0; t < static_cast<Index>(good.size()); ++t) s.components += comp.find(t) == t ? 1 : 0;
+  // Boundary loops and fans only make sense on an edge-manifold, oriented mesh.
+  if (s.non_manifold_edges == 0 && s.inconsistent_edges == 0 && s.bad_indices == 0) {
+    try {
+      HalfEdges he = build_halfedges(good, static_cast<Index>(nv));
+      auto fans = fans_per_vertex(gm, he);
+      for (size_t v = 0; v < nv; ++v) s.non_manifold_vertices += fans[v] > 1 ? 1 : 0;
+      std::vector<char> seen(he.twin.size(), 0);
+      HalfEdgeLookup look(good, static_cast<Index>(nv));
+      (void)look;
+      // Boundary cycles: follow boundary half-edges; next boundary half-edge out of b found by
+      // rotating around b through twins.
+      for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h) {
+        if (he.twin[static_cast<size_t>(h)] >= 0 || seen[static_cast<size_t>(h)]) continue;
+        ++s.boundary_loops;
+        Index x = h;
+        for (size_t guard = 0; guard <= he.twin.size() && !seen[static_cast<size_t>(x)]; ++guard) {
+          seen[static_cast<size_t>(x)] = 1;
+          Index y = HalfEdges::next(x);
+          while (he.twin[static_cast<size_t>(y)] >= 0) y = HalfEdges::next(he.twin[static_cast<size_t>(y)]);
+          x = y;
+        }
+      }
+      const std::int64_t V = static_cast<std::int64_t>(nv) - s.isolated_vertices;
+      const std::int64_t chi = V - edges + static_cast<std::int64_t>(good.size());
+      s.genus = s.non_manifold_vertices ? -1 : (2 * s.components - chi - s.boundary_loops) / 2;
+    } catch (const Error&) {
+      s.genus = -1;
+    }
+  } else {
+    s.genus = -1;
+  }
+  return s;
+}
+
+void validate_mesh(const TriMesh& m) {
+  const size_t nv = m.vertices.size(), nt = m.triangles.size();
+  if (nv < 3 || nt < 1) fail(Errc::invalid_mesh, "a face needs at least 3 vertices and 1 triangle (got " + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
+  if (nv > 0x7fffffff || nt > 0x7fffffff / 3) fail(Errc::invalid_mesh, "too many vertices or triangles for 32-bit indices");
+  for (size_t v = 0; v < nv; ++v)
+    if (!m.vertices[v].allFinite())
+      fail(Errc::invalid_mesh, "vertex " + std::to_string(v) + " has a NaN or infinite coordinate");
+  for (size_t t = 0; t < nt; ++t) {
+    const Tri& f = m.triangles[t];
+    for (int j = 0; j < 3; ++j)
+      if (f[j] < 0 || static_cast<size_t>(f[j]) >= nv)
+        fail(Errc::invalid_mesh, tri_str(m, t) + ": vertex index " + std::to_string(f[j]) + " is out of range [0, " + std::to_string(nv) + ")");
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) fail(Errc::invalid_mesh, tri_str(m, t) + " repeats a vertex");
+  }
+  std::vector<Tri> canon;
+  auto order = sorted_by_vertex_set(m, canon);
+  for (size_t i = 1; i < order.size(); ++i)
+    if (canon[order[i]] == canon[order[i - 1]])
+      fail(Errc::invalid_mesh, "duplicate triangles: " + tri_str(m, order[i - 1]) + " and " + tri_str(m, order[i]) + " use the same vertices");
+  HalfEdges he = build_halfedges(m.triangles, static_cast<Index>(nv));  // non-manifold edges, orientation
+  auto fans = fans_per_vertex(m, he);
+  for (size_t v = 0; v < nv; ++v)
+    if (fans[v] > 1)
+      fail(Errc::invalid_mesh, "non-manifold vertex " + std::to_string(v) + ": its triangles form " + std::to_string(fans[v]) + " separate fans");
+  UnionFind comp(static_cast<Index>(nt));
+  for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h)
+    if (he.twin[static_cast<size_t>(h)] >= 0) comp.unite(h / 3, he.twin[static_cast<size_t>(h)] / 3);
+  for (Index t = 0; t < static_cast<Index>(nt); ++t)
+    if (comp.find(t) != 0)
+      fail(Errc::invalid_mesh, "the mesh has several connected components (" + tri_str(m, static_cast<size_t>(t)) + " is not connected to triangle 0); flatten each component as its own face");
+}
+
+}  // namespace wefm
