@@ -1,0 +1,188 @@
+// wefm batch DIR|LISTFILE -o OUTDIR [-j N] [flatten options]
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "batch_inputs.hpp"
+#include "command.hpp"
+#include "exit_codes.hpp"
+#include "face_job.hpp"
+#include "output_paths.hpp"
+
+namespace wefm_cli {
+
+namespace {
+
+std::vector<OptionSpec> batch_specs() {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<OptionSpec> specs = {
+      {"output", 'o', "OUTDIR", "directory for <name>.obj and <name>.json (created; required)", "", false},
+      {"jobs", 'j', "N", "faces flattened at the same time, one thread each", std::to_string(hw), false},
+      {"use-topology", 0, "", "in face folders, use topo.json instead of face.seam", "", false},
+      {"summary-json", 0, "FILE", "also write the summary table as JSON", "", false},
+      {"quiet", 'q', "", "no per-face progress lines (the summary table is still printed)", "", false},
+  };
+  for (auto& s : solver_option_specs()) specs.push_back(s);
+  return specs;
+}
+
+void print_help() {
+  std::printf(
+      "Usage: wefm batch DIR|LISTFILE -o OUTDIR [-j N] [options]\n\n"
+      "Flattens many faces in parallel and writes OUTDIR/<name>.obj and OUTDIR/<name>.json (report).\n"
+      "DIR: every .obj/.off/.stl/.ply in it (with <stem>.seam beside it when that has data) and every\n"
+      "sub-folder holding face.obj (uses its face.seam when it has data, or topo.json with\n"
+      "--use-topology), as in data/real. LISTFILE: one mesh file or face folder per line, # comments.\n"
+      "One failing face is reported and the others go on. The exit code is 0 when every face succeeded,\n"
+      "else the largest code of any face (6 if cancelled).\n\nOptions:\n%s\n%s",
+      format_options(batch_specs()).c_str(), exit_codes_help());
+}
+
+const char* status_text(const FaceOutcome& o, bool started) {
+  if (!started) return "skipped";
+  switch (o.exit_code) {
+    case kExitOk: return "ok";
+    case kExitIo: return "io error";
+    case kExitInvalid: return "invalid";
+    case kExitSolver: return o.snap.has_result ? "not converged" : "solver failed";
+    case kExitCancelled: return "cancelled";
+    default: return "failed";
+  }
+}
+
+std::string fmt(const char* format, double v) {
+  if (!std::isfinite(v)) return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+int run_batch(const std::vector<std::string>& argv) {
+  const auto specs = batch_specs();
+  ParsedArgs args;
+  std::string error;
+  FlattenSettings settings;
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, settings, error))) {
+    std::fprintf(stderr, "wefm batch: %s (see wefm batch --help)\n", error.c_str());
+    return kExitUsage;
+  }
+  if (args.help) {
+    print_help();
+    return kExitOk;
+  }
+  if (args.positionals.size() != 1 || !args.has("output")) {
+    std::fprintf(stderr, "wefm batch: expected one DIR or LISTFILE and -o OUTDIR (see wefm batch --help)\n");
+    return kExitUsage;
+  }
+  long long jobs = std::max(1u, std::thread::hardware_concurrency());
+  if (args.has("jobs") && (!parse_int(args.value("jobs"), jobs) || jobs < 1 || jobs > 1024)) {
+    std::fprintf(stderr, "wefm batch: -j: expected a thread count >= 1, got '%s'\n", args.value("jobs").c_str());
+    return kExitUsage;
+  }
+  const bool quiet = args.has("quiet");
+  std::vector<BatchItem> items;
+  if (!find_batch_items(args.positionals[0], args.has("use-topology"), items, error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return kExitIo;
+  }
+  const std::filesystem::path outdir = args.value("output");
+  if (!make_dirs(outdir.string(), error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return kExitIo;
+  }
+
+  install_interrupt_handler();
+  CancelWatcher watcher;
+  std::vector<FaceOutcome> results(items.size());
+  std::vector<char> started(items.size(), 0);
+  std::atomic<size_t> next{0};
+  std::atomic<size_t> finished{0};
+  std::mutex print_mutex;
+  auto worker = [&] {
+    for (size_t i; !interrupted() && (i = next++) < items.size();) {
+      const BatchItem& item = items[i];
+      FaceJob job;
+      job.input = item.input;
+      job.output_obj = (outdir / (item.name + ".obj")).string();
+      job.settings = settings;
+      job.settings.seams_path = item.seams;
+      job.settings.topology_path = item.topology;
+      job.settings.report_path = (outdir / (item.name + ".json")).string();
+      job.watcher = &watcher;
+      started[i] = 1;
+      results[i] = run_face_job(job);
+      const size_t done = ++finished;
+      if (!quiet) {
+        std::lock_guard<std::mutex> lock(print_mutex);
+        const FaceOutcome& o = results[i];
+        std::fprintf(stderr, "[%zu/%zu] %s: %s (%.2f s)%s%s\n", done, items.size(), item.name.c_str(),
+                     status_text(o, true), o.time.total, o.error.empty() ? "" : ": ", o.error.c_str());
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), items.size());
+  for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+
+  // Summary table.
+  size_t width = 4;
+  for (const auto& it : items) width = std::max(width, it.name.size());
+  std::printf("%-*s %9s %9s %6s %8s %8s  %s\n", static_cast<int>(width), "name", "tris", "score", "flips", "overlaps",
+              "time", "status");
+  int exit_code = kExitOk;
+  size_t ok = 0;
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < items.size(); ++i) {
+    const FaceOutcome& o = results[i];
+    const bool has = o.snap.has_result;
+    const wefm_report& r = o.snap.report;
+    std::printf("%-*s %9lld %9s %6s %8s %7.2fs  %s\n", static_cast<int>(width), items[i].name.c_str(),
+                static_cast<long long>(o.snap.info.triangles), has ? fmt("%.4f", r.score).c_str() : "-",
+                has ? std::to_string(r.flipped_triangles).c_str() : "-",
+                has ? std::to_string(r.boundary_intersections).c_str() : "-", o.time.total,
+                status_text(o, started[i]));
+    const int code = started[i] ? o.exit_code : kExitCancelled;
+    if (code == kExitOk) ++ok;
+    exit_code = std::max(exit_code, code);
+    nlohmann::ordered_json row;
+    row["name"] = items[i].name;
+    row["input"] = items[i].input;
+    row["triangles"] = o.snap.info.triangles;
+    row["score"] = has && std::isfinite(r.score) ? nlohmann::ordered_json(r.score) : nlohmann::ordered_json(nullptr);
+    row["flipped_triangles"] = has ? nlohmann::ordered_json(r.flipped_triangles) : nlohmann::ordered_json(nullptr);
+    row["boundary_intersections"] = has ? nlohmann::ordered_json(r.boundary_intersections) : nlohmann::ordered_json(nullptr);
+    row["time"] = o.time.total;
+    row["status"] = status_text(o, started[i]);
+    row["exit_code"] = code;
+    row["message"] = o.error;
+    rows.push_back(std::move(row));
+  }
+  std::printf("%zu faces: %zu ok, %zu failed; outputs in %s\n", items.size(), ok, items.size() - ok,
+              outdir.string().c_str());
+  for (size_t i = 0; i < items.size(); ++i)
+    if (results[i].exit_code != kExitOk)
+      std::fprintf(stderr, "wefm: %s: %s\n", items[i].name.c_str(), results[i].error.c_str());
+  if (args.has("summary-json")) {
+    std::ofstream out(args.value("summary-json"));
+    if (out) out << rows.dump(2) << '\n';
+    if (!out) {
+      std::fprintf(stderr, "wefm: %s: cannot write summary\n", args.value("summary-json").c_str());
+      exit_code = std::max<int>(exit_code, kExitIo);
+    }
+  }
+  if (interrupted()) exit_code = kExitCancelled;
+  return exit_code;
+}
+
+}  // namespace
+
+Command batch_command() { return {"batch", "flatten many faces in parallel (directory or list file)", run_batch}; }
+
+}  // namespace wefm_cli

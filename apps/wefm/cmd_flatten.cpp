@@ -1,0 +1,98 @@
+// wefm flatten INPUT -o OUTPUT.obj [options]
+#include <cstdio>
+
+#include "command.hpp"
+#include "exit_codes.hpp"
+#include "face_job.hpp"
+#include "output_paths.hpp"
+#include "summary.hpp"
+
+namespace wefm_cli {
+
+namespace {
+
+std::vector<OptionSpec> flatten_specs() {
+  std::vector<OptionSpec> specs = {
+      {"output", 'o', "OUT.obj", "UV mesh to write: v (3D), vt (UV per vertex use), f v/vt (required)", "", false},
+      {"seams", 0, "FILE", "facet edges to cut along: two 0-based vertex indices per line, # comments", "", false},
+      {"topology", 0, "FILE.json", "face topology: edges, loops, outer_loop, per-edge mode (topo.json schema)", "",
+       false},
+      {"write-topology", 0, "FILE.json", "write the topology used (edges, loops, outer loop, decided modes)", "",
+       false},
+      {"report", 0, "FILE.json", "write the JSON quality report (fields: apps/README.md)", "", false},
+      {"svg", 0, "FILE.svg|FILE.png", "picture of the UV domain coloured by area distortion", "", false},
+      {"quiet", 'q', "", "no summary, no progress; errors still go to stderr", "", false},
+  };
+  for (auto& s : solver_option_specs()) specs.push_back(s);
+  return specs;
+}
+
+void print_help() {
+  std::printf(
+      "Usage: wefm flatten INPUT -o OUTPUT.obj [options]\n\n"
+      "Flattens one face (INPUT: OBJ, OFF, STL ascii/binary or PLY) into a 2D domain and writes it as\n"
+      "an OBJ with UVs. Without --topology or --seams the loops are the mesh's boundary cycles; a closed\n"
+      "or annular face needs --seams, --topology or --auto-cut.\n\nOptions:\n%s\n"
+      "Progress goes to stderr (a bar on a terminal, 'progress:' lines otherwise); Ctrl-C cancels.\n\n%s",
+      format_options(flatten_specs()).c_str(), exit_codes_help());
+}
+
+int run_flatten(const std::vector<std::string>& argv) {
+  const auto specs = flatten_specs();
+  ParsedArgs args;
+  std::string error;
+  FaceJob job;
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, job.settings, error))) {
+    std::fprintf(stderr, "wefm flatten: %s (see wefm flatten --help)\n", error.c_str());
+    return kExitUsage;
+  }
+  if (args.help) {
+    print_help();
+    return kExitOk;
+  }
+  if (args.positionals.size() != 1 || !args.has("output")) {
+    std::fprintf(stderr, "wefm flatten: %s (usage: wefm flatten INPUT -o OUTPUT.obj [options])\n",
+                 args.positionals.empty()  ? "missing INPUT"
+                 : args.positionals.size() > 1 ? "more than one INPUT"
+                                           : "missing -o OUTPUT.obj");
+    return kExitUsage;
+  }
+  if (args.has("seams") && args.has("topology")) {
+    std::fprintf(stderr, "wefm flatten: --seams and --topology exclude each other: put seam edges in the topology\n");
+    return kExitUsage;
+  }
+  FlattenSettings& s = job.settings;
+  auto opt = [&](const char* name) { return args.has(name) ? args.value(name) : std::string(); };
+  s.seams_path = opt("seams");
+  s.topology_path = opt("topology");
+  s.write_topology_path = opt("write-topology");
+  s.report_path = opt("report");
+  s.svg_path = opt("svg");
+  s.quiet = args.has("quiet");
+  job.input = args.positionals[0];
+  job.output_obj = args.value("output");
+  for (const std::string* out : {&job.output_obj, &s.write_topology_path, &s.report_path, &s.svg_path}) {
+    if (!out->empty() && !make_parent_dirs(*out, error)) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      return kExitIo;
+    }
+  }
+  install_interrupt_handler();
+  CancelWatcher watcher;
+  job.watcher = &watcher;
+  job.show_progress = !s.quiet;
+  const FaceOutcome outcome = run_face_job(job);
+  if (!s.quiet && (outcome.snap.has_result || outcome.topology_built)) print_summary(job.input, outcome);
+  std::fflush(stdout);
+  if (outcome.exit_code == kExitSolver && outcome.snap.has_result)
+    std::fprintf(stderr, "wefm: warning: %s\n", outcome.error.c_str());
+  else if (outcome.exit_code != kExitOk)
+    std::fprintf(stderr, "wefm: %s\n", outcome.error.c_str());
+  return outcome.exit_code;
+}
+
+}  // namespace
+
+Command flatten_command() { return {"flatten", "flatten one face to a UV OBJ (+ report, picture, topology)", run_flatten}; }
+
+}  // namespace wefm_cli

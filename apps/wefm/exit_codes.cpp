@@ -1,0 +1,29 @@
+#include "exit_codes.hpp"
+
+namespace wefm_cli {
+
+int exit_code_for(wefm_status status) {
+  switch (status) {
+    case WEFM_OK: return kExitOk;
+    case WEFM_ERROR_IO:
+    case WEFM_ERROR_UNSUPPORTED: return kExitIo;
+    case WEFM_ERROR_INVALID_MESH:
+    case WEFM_ERROR_INVALID_TOPOLOGY:
+    case WEFM_ERROR_INVALID_CONSTRAINT: return kExitInvalid;
+    case WEFM_ERROR_INVALID_ARGUMENT: return kExitUsage;
+    case WEFM_ERROR_CANCELLED: return kExitCancelled;
+    default: return kExitSolver;  // singular, not positive definite, not converged, memory, internal
+  }
+}
+
+const char* exit_codes_help() {
+  return "Exit codes:\n"
+         "  0  success\n"
+         "  2  bad usage (unknown option, bad option value)\n"
+         "  3  unreadable input or unwritable output (also an unsupported file format)\n"
+         "  4  invalid mesh or topology (seams, --topology file, --edge-mode-of that does not fit)\n"
+         "  5  solver failure, including not converged (outputs are still written when a result exists)\n"
+         "  6  cancelled (Ctrl-C)\n";
+}
+
+}  // namespace wefm_cli

@@ -1,0 +1,67 @@
+// wefm: command-line front end of the wefm library, built only on the public C header.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "exit_codes.hpp"
+#include "wefm/wefm.h"
+
+namespace {
+
+void print_main_help() {
+  std::printf(
+      "wefm %s: flatten 3D triangulated faces into 2D domains (Weighted Edge Flattening Method)\n\n"
+      "Usage: wefm COMMAND [options]\n"
+      "       wefm COMMAND --help     options of one command, with their defaults\n"
+      "       wefm --version\n\n"
+      "Commands:\n",
+      wefm_version());
+  for (const auto& c : wefm_cli::commands()) std::printf("  %-10s %s\n", c.name, c.summary);
+  std::printf("\nExample:\n  wefm flatten examples/data/vessel_patch.obj -o out/vessel_patch.obj "
+              "--report out/report.json --svg out/domain.svg\n\n%s",
+              wefm_cli::exit_codes_help());
+}
+
+int run(int argc, char** argv) {
+  using namespace wefm_cli;
+  if (argc < 2) {
+    print_main_help();
+    return kExitUsage;
+  }
+  const std::string first = argv[1];
+  if (first == "--help" || first == "-h" || first == "help") {
+    print_main_help();
+    return kExitOk;
+  }
+  if (first == "--version" || first == "-V") {
+    std::printf("wefm %s (%s)\n", wefm_version(), wefm_has_suitesparse() ? "CHOLMOD" : "Eigen solvers only");
+    if (wefm_version_number() != WEFM_VERSION_NUMBER)
+      std::fprintf(stderr, "wefm: warning: built against header %d but running library %d\n", WEFM_VERSION_NUMBER,
+                   wefm_version_number());
+    return kExitOk;
+  }
+  for (const auto& c : commands()) {
+    if (first == c.name) return c.run(std::vector<std::string>(argv + 2, argv + argc));
+  }
+  std::fprintf(stderr, "wefm: unknown command '%s' (try wefm --help)\n", first.c_str());
+  return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // No exception may escape: an unexpected one (std::bad_alloc while writing outputs) becomes a
+  // message and the solver-failure code rather than std::terminate.
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "wefm: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "wefm: internal error: %s\n", e.what());
+  } catch (...) {
+    std::fprintf(stderr, "wefm: internal error\n");
+  }
+  return wefm_cli::kExitSolver;
+}
