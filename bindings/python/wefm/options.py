@@ -1,0 +1,99 @@
+"""Solve and meshing options as keyword arguments over the wefm_options / wefm_mesh_options structs.
+
+Defaults always come from the library's *_init functions, never from this file.
+Enum-valued fields also accept their names ("rollout", "eigen", "periodic", "transfinite") and
+flag fields accept bool.
+"""
+import ctypes
+
+from . import _structs as S
+from ._api import lib
+from ._records import initialised
+
+_ENUMS = {
+    "method": {"global": S.METHOD_GLOBAL, "rollout": S.METHOD_ROLLOUT},
+    "solver": {"auto": S.SOLVER_AUTO, "cholmod": S.SOLVER_CHOLMOD, "eigen": S.SOLVER_EIGEN},
+    "default_edge_mode": {n: i for i, n in enumerate(S.EDGE_MODE_NAMES)},
+    "type": {"free": S.MESH_FREE, "transfinite": S.MESH_TRANSFINITE},
+}
+
+
+def edge_mode_value(mode):
+    """An edge mode given as int or name ("periodic") -> int."""
+    if isinstance(mode, str):
+        try:
+            return S.EDGE_MODE_NAMES.index(mode.lower())
+        except ValueError:
+            raise ValueError("unknown edge mode %r; one of %s" % (mode, ", ".join(S.EDGE_MODE_NAMES)))
+    return int(mode)
+
+
+def _assign(struct, name, value):
+    names = [f for f, _ in struct._fields_ if f != "struct_size"]
+    if name not in names:
+        raise TypeError("unknown option %r; valid: %s" % (name, ", ".join(names)))
+    if name in _ENUMS and isinstance(value, str):
+        try:
+            value = _ENUMS[name][value.lower()]
+        except KeyError:
+            raise ValueError("%s=%r: one of %s" % (name, value, ", ".join(_ENUMS[name])))
+    current = getattr(struct, name)
+    if isinstance(current, ctypes.Array):
+        if len(value) != len(current):
+            raise ValueError("%s needs %d values" % (name, len(current)))
+        value = type(current)(*value)
+    setattr(struct, name, value)
+
+
+class _StructOptions:
+    _struct_cls = None
+    _init = None
+
+    def __init__(self, **kwargs):
+        object.__setattr__(self, "_struct", initialised(self._struct_cls, getattr(lib, self._init)))
+        for name, value in kwargs.items():
+            _assign(self._struct, name, value)
+
+    @classmethod
+    def _wrap(cls, struct):
+        out = cls()
+        ctypes.memmove(ctypes.byref(out._struct), ctypes.byref(struct), ctypes.sizeof(cls._struct_cls))
+        out._struct.struct_size = ctypes.sizeof(cls._struct_cls)
+        return out
+
+    def __getattr__(self, name):
+        struct = object.__getattribute__(self, "_struct")
+        if name in (f for f, _ in struct._fields_):
+            value = getattr(struct, name)
+            return tuple(value) if isinstance(value, ctypes.Array) else value
+        raise AttributeError(name)
+
+    def __setattr__(self, name, value):
+        _assign(self._struct, name, value)
+
+    def update(self, **kwargs):
+        for name, value in kwargs.items():
+            _assign(self._struct, name, value)
+        return self
+
+    def as_dict(self):
+        return S.struct_to_dict(self._struct)
+
+    def __repr__(self):
+        return "%s(%s)" % (type(self).__name__,
+                           ", ".join("%s=%r" % kv for kv in self.as_dict().items()))
+
+    def __eq__(self, other):
+        return type(other) is type(self) and other.as_dict() == self.as_dict()
+
+
+class Options(_StructOptions):
+    """wefm_options: Options(s=0.5, method="rollout"); attributes read and write the fields."""
+    _struct_cls = S.Options
+    _init = "options_init"
+
+
+class MeshOptions(_StructOptions):
+    """wefm_mesh_options: MeshOptions(size=0.05, type="transfinite")."""
+    _struct_cls = S.MeshOptions
+    _init = "mesh_options_init"
