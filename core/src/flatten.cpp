@@ -1,6 +1,9 @@
 #include "wefm/core/flatten.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -71,7 +74,13 @@ FlattenResult flatten(const FlattenInput& in) {
   for (auto& r : caller) r.rhs /= ls;
   const VectorXc z_ref = planar_projection(mesh, tp, ls);
   GaugeChoice gauge = choose_gauges(caller, z_ref, eta);
-  const Eigen::VectorXd* eta_ptr = gauge.translation ? &eta : nullptr;
+  // Translation is fixed by pinning one gauge use and shifting afterwards (see PartitionedKKT::solve).
+  const Eigen::VectorXd* eta_ptr = nullptr;
+  auto recentre = [&](VectorXc& zz) {
+    if (!gauge.translation) return;
+    const Complex c = eta.cast<Complex>().dot(zz) / eta.sum();
+    zz.array() -= c;
+  };
 
   // Modes per repeated edge: forced, or the default, or Auto (decided below).
   const size_t ne = tp.edges.size();
@@ -118,10 +127,14 @@ FlattenResult flatten(const FlattenInput& in) {
   SpMatC K = assemble_energy(A, Bp);
   rep.time.assembly += now() - t0;
   const auto seg = longest_loop_segment(tp, coef, mesh, tp.outer_loop);
+  const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
   PartitionedKKT kkt(opt.backend);
   stage.check(0.1, "factorise");
-  kkt.set_matrix(K, seg.first, seg.second);
+  kkt.set_matrix(K, split.first, split.second);
 
+  LinearRow vec, pin;
+  pin.terms = {{seg.first, 1.0}};
+  pin.rhs = 0.0;
   auto rows_with = [&](const std::vector<EdgeMode>& md, const std::vector<Complex>& rot, const LinearRow* vec) {
     std::vector<LinearRow> rows = caller;
     for (const RepeatedEdge& r : tp.repeated) {
@@ -129,9 +142,9 @@ FlattenResult flatten(const FlattenInput& in) {
       rows.insert(rows.end(), add.begin(), add.end());
     }
     if (vec) rows.push_back(*vec);
+    if (gauge.translation) rows.push_back(pin);
     return rows;
   };
-  LinearRow vec;
   if (gauge.vector) {
     const double L = (mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(seg.second)])] -
                       mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(seg.first)])]).norm() / ls;
@@ -140,6 +153,7 @@ FlattenResult flatten(const FlattenInput& in) {
   }
   stage.check(0.2, "solve");
   VectorXc z = kkt.solve(rows_with(mode, rotation, gauge.vector ? &vec : nullptr), eta_ptr);
+  recentre(z);
   if (gauge.vector) {
     // Fixing one short facet edge lets its local error tilt the whole layout; fix the vector
     // between two far-apart boundary uses instead. Same factorisation.
@@ -147,7 +161,10 @@ FlattenResult flatten(const FlattenInput& in) {
     if (fp.first != fp.second) {
       vec.terms = {{fp.second, 1.0}, {fp.first, -1.0}};
       vec.rhs = z[fp.second] - z[fp.first];
+      pin.terms = {{fp.first, 1.0}};
+      pin.rhs = z[fp.first];
       z = kkt.solve(rows_with(mode, rotation, &vec), eta_ptr);
+      recentre(z);
     }
   }
   auto score_of = [&](const VectorXc& zz) {
@@ -179,7 +196,9 @@ FlattenResult flatten(const FlattenInput& in) {
         double best = -std::numeric_limits<double>::infinity();
         EdgeMode best_mode = mode[static_cast<size_t>(e)];
         VectorXc best_z = z;
-        for (EdgeMode cand : {EdgeMode::Free, EdgeMode::Periodic, EdgeMode::Scar, EdgeMode::Rotational}) {
+        // Periodic first: on ties (a developable cylinder is exact both free and periodic) the
+        // periodic domain is the one a mesher wants, with matching nodes on the two sides.
+        for (EdgeMode cand : {EdgeMode::Periodic, EdgeMode::Free, EdgeMode::Rotational, EdgeMode::Scar}) {
           md[static_cast<size_t>(e)] = cand;
           std::vector<Complex> rot = rotation;
           if (cand == EdgeMode::Rotational) rot[static_cast<size_t>(e)] = estimate_rotation(r, z_free);
@@ -187,12 +206,22 @@ FlattenResult flatten(const FlattenInput& in) {
           VectorXc zc;
           try {
             zc = kkt.solve(rows_with(md, rot, gauge.vector ? &vec : nullptr), eta_ptr);
+            recentre(zc);
             sc = score_of(zc);
           } catch (const Error& err) {
             if (err.code() != Errc::singular) throw;
             sc = -std::numeric_limits<double>::infinity();
           }
           if (cand == EdgeMode::Free) z_free = zc;
+          if (cand == EdgeMode::Periodic) {
+            // The rotational candidate needs the free layout's rotation estimate.
+            std::vector<EdgeMode> mf = md;
+            mf[static_cast<size_t>(e)] = EdgeMode::Free;
+            try {
+              z_free = kkt.solve(rows_with(mf, rotation, gauge.vector ? &vec : nullptr), eta_ptr);
+            } catch (const Error&) {
+            }
+          }
           res.edge_scores[static_cast<size_t>(e)][static_cast<size_t>(cand)] = std::isfinite(sc) ? sc : -3.0;
           // A constrained mode must beat free clearly: constraints are only worth their rigidity.
           if (sc > best + 1e-9) {
@@ -212,28 +241,43 @@ FlattenResult flatten(const FlattenInput& in) {
     (void)current;
   }
   for (size_t e = 0; e < ne; ++e) res.edge_modes[e] = mode[e];
+  const bool had_translation = gauge.translation;
+  gauge.translation = false;  // rows0 holds caller and seam rows only; the gauge rows are added per solve
   const std::vector<LinearRow> rows0 = rows_with(mode, rotation, nullptr);
+  gauge.translation = had_translation;
 
   // --- Continuation in s ------------------------------------------------------------------------
   const bool early = opt.s > 0 && opt.score_threshold <= 1.0 && score_of(z) >= opt.score_threshold;
   double s_cur = 0;
   const double t_cont = now();
+  // The rho fixed point is not guaranteed to improve the layout on strongly curved faces (it can
+  // oscillate or fold); keep the best-scoring layout reached and report the s it belongs to.
+  VectorXc best_z = z;
+  double best_score = opt.s > 0 ? score_of(z) : 0.0, best_s = 0.0;
   while (opt.s > 0 && !early && s_cur < opt.s - 1e-12) {
     const double s_next = std::min(opt.s, s_cur + opt.s_step);
     StepInfo step;
     step.s = s_next;
     bool conv = false;
+    // rho used for this step's matrices; relaxed geometrically toward the layout's rho because the
+    // plain fixed point oscillates where the conformal layout shrank edges strongly.
+    std::vector<double> rho_used = compute_rho(mesh, tp, coef, z);
+    double omega = 1.0, prev_change = std::numeric_limits<double>::infinity();
     for (int it = 0; it < opt.max_rho_iterations; ++it) {
       stage.check(0.4 + 0.5 * (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / opt.s, "continuation");
       t0 = now();
-      rho = compute_rho(mesh, tp, coef, z);
-      A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, s_next), opt.k);
+      A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho_used, s_next), opt.k);
       K = assemble_energy(A, Bp);
       rep.time.assembly += now() - t0;
-      kkt.set_matrix(K, seg.first, seg.second);
+      kkt.set_matrix(K, split.first, split.second);
       std::vector<LinearRow> rows = rows0;
       if (gauge.vector) rows.push_back(vec);
+      if (gauge.translation) {
+        pin.rhs = z[pin.terms[0].first];
+        rows.push_back(pin);
+      }
       VectorXc zn = kkt.solve(rows, eta_ptr);
+      recentre(zn);
       if (gauge.vector) {
         // The vector gauge fixes size; for s > 0 the energy prefers one size, so follow it.
         const double a = optimal_scale(tp, coef, zn, s_next, opt.k, gauge.center);
@@ -241,14 +285,24 @@ FlattenResult flatten(const FlattenInput& in) {
         vec.rhs *= a;
       }
       const std::vector<double> rho_new = compute_rho(mesh, tp, coef, zn);
-      step.rho_change = max_rel_change(rho, rho_new);
+      step.rho_change = max_rel_change(rho_used, rho_new);
       step.iterations = it + 1;
       z = zn;
       ++rep.rho_iterations;
+      const double sc = score_of(z);
+      if (sc >= best_score - 1e-12) {
+        best_score = sc;
+        best_z = z;
+        best_s = s_next;
+      }
       if (step.rho_change < opt.rho_tolerance) {
         conv = true;
         break;
       }
+      omega = step.rho_change > prev_change ? std::max(0.125, 0.5 * omega) : std::min(1.0, 1.5 * omega);
+      prev_change = step.rho_change;
+      for (size_t h = 0; h < rho_used.size(); ++h)
+        rho_used[h] = std::clamp(std::pow(rho_used[h], 1.0 - omega) * std::pow(rho_new[h], omega), 1e-3, 1e3);
     }
     if (!conv) rep.converged = false;
     res.steps.push_back(step);
@@ -258,9 +312,13 @@ FlattenResult flatten(const FlattenInput& in) {
   }
   rep.time.continuation = now() - t_cont;
   rep.s = early ? 0.0 : opt.s;
+  if (opt.s > 0 && !early && best_s < opt.s) {
+    z = best_z;
+    rep.s = best_s;
+  }
 
   // s = 0 is scale-free: return the layout with the 3D area.
-  if ((opt.s == 0 || early) && gauge.vector) {
+  if ((rep.s == 0 || early) && gauge.vector) {
     double uv_area = 0, a3 = 0;
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
@@ -285,3 +343,4 @@ FlattenResult flatten(const FlattenInput& in) {
 }
 
 }  // namespace wefm
+

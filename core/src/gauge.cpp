@@ -39,6 +39,23 @@ std::pair<Index, Index> far_pair(const Topology& tp, const VectorXc& z, Index lo
   return {a, b};
 }
 
+std::pair<Index, Index> far_pair_3d(const TriMesh& m, const Topology& tp, Index loop) {
+  const auto& lu = tp.loop_uses[static_cast<size_t>(loop)];
+  auto pos = [&](Index u) -> const Vec3& { return m.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])]; };
+  auto farthest = [&](Index from) {
+    Index best = from;
+    double d = -1;
+    for (Index u : lu)
+      if (u != from && (pos(u) - pos(from)).squaredNorm() > d) {
+        d = (pos(u) - pos(from)).squaredNorm();
+        best = u;
+      }
+    return best;
+  };
+  const Index a = farthest(lu[0]);
+  return {a, farthest(a)};
+}
+
 VectorXc planar_projection(const TriMesh& m, const Topology& tp, double ls) {
   Vec3 mean = Vec3::Zero();
   for (const Vec3& p : m.vertices) mean += p;
@@ -72,7 +89,7 @@ GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& zr
     M(static_cast<Index>(r), 0) = s1 * n;
     M(static_cast<Index>(r), 1) = s2 * n / std::max(1e-300, zr.cwiseAbs().maxCoeff());
   }
-  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(M);
+  Eigen::JacobiSVD<Eigen::MatrixXcd> svd(M, Eigen::ComputeFullV);
   const auto sv = svd.singularValues();
   const int rank = (sv.size() > 0 && sv[0] > 1e-9 ? 1 : 0) + (sv.size() > 1 && sv[1] > 1e-9 * std::max(1.0, sv[0]) ? 1 : 0);
   if (rank == 2) {

@@ -35,6 +35,7 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1) {
   K_PX_.resize(np, 2);
   K_PX_.setFromTriplets(px.begin(), px.end());
   chol_.factorize(Kpp);
+  K_ = K;
   cache_valid_ = false;
   unit_.clear();
 }
@@ -111,15 +112,65 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
     if (cache_valid_ && cache_eta_ != eta) cache_valid_ = false;
     prepare(need, eta);
   }
-  // Rows: caller rows then the dense eta row.
+  const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
+  Eigen::VectorXcd d(m);
+  for (Index r = 0; r < m; ++r) d[r] = r < static_cast<Index>(rows.size()) ? rows[static_cast<size_t>(r)].rhs : Complex(0, 0);
+  Eigen::VectorXcd lambda;
+  VectorXc z = eliminate(rows, eta, VectorXc::Zero(n_), d, lambda, true);
+  // The elimination is exact in exact arithmetic, but multipliers that should vanish pick up
+  // rounding noise that K_PP^{-1} C^H amplifies; refining on the full KKT residual removes it.
+  auto apply_c = [&](const VectorXc& zz) {
+    Eigen::VectorXcd c(m);
+    for (Index r = 0; r < m; ++r) {
+      Complex acc{0, 0};
+      if (r < static_cast<Index>(rows.size()))
+        for (auto& [u, g] : rows[static_cast<size_t>(r)].terms) acc += g * zz[u];
+      else
+        acc = eta->cast<Complex>().dot(zz);
+      c[r] = acc;
+    }
+    return c;
+  };
+  auto apply_ch = [&](const Eigen::VectorXcd& lam) {
+    VectorXc v = VectorXc::Zero(n_);
+    for (Index r = 0; r < m; ++r) {
+      if (r < static_cast<Index>(rows.size()))
+        for (auto& [u, g] : rows[static_cast<size_t>(r)].terms) v[u] += std::conj(g) * lam[r];
+      else
+        v += eta->cast<Complex>() * lam[r];
+    }
+    return v;
+  };
+  for (int it = 0; it < 3; ++it) {
+    const VectorXc rz = -(K_ * z + apply_ch(lambda));
+    const Eigen::VectorXcd rc = d - apply_c(z);
+    const double rnorm = rz.norm() + rc.norm();
+    if (!(rnorm > 1e-15 * (1.0 + d.norm()))) break;
+    Eigen::VectorXcd dl;
+    const VectorXc dz = eliminate(rows, eta, rz, rc, dl, false);
+    z += dz;
+    lambda += dl;
+  }
+  return z;
+}
+
+VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f,
+                                   const Eigen::VectorXcd& d, Eigen::VectorXcd& lambda, bool check) {
   const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
   const Index N = 2 + m;
+  const Index np = n_ - 2;
+  // g = K_PP^{-1} f_P: the unconstrained response to the right-hand side.
+  const bool has_f = f.squaredNorm() > 0;
+  Eigen::VectorXcd fP(np), g = Eigen::VectorXcd::Zero(np);
+  for (Index u = 0; u < n_; ++u)
+    if (p_index(u) >= 0) fP[p_index(u)] = f[u];
+  if (has_f) g = chol_.solve(fP);
+  // Rows: caller rows then the dense eta row.
   // W columns restricted to the probe, for x (2) and each row's C_P^H column.
   const Index nq = static_cast<Index>(probe_.size());
   Eigen::MatrixXcd Wq(nq, N);  // column j: K_PP^{-1} (source j) sampled at the probe
   Eigen::VectorXcd Weta(N);    // eta . column j
   Eigen::MatrixXcd CX = Eigen::MatrixXcd::Zero(m, 2);
-  Eigen::VectorXcd d(m);
   for (int j = 0; j < 2; ++j) {
     Wq.col(j) = col_x_[j].probe;
     Weta[j] = col_x_[j].eta_dot;
@@ -137,13 +188,11 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
         w += std::conj(g) * c.probe;
         we += std::conj(g) * c.eta_dot;
       }
-      d[r] = rows[static_cast<size_t>(r)].rhs;
     } else {
       w = col_eta_.probe;
       we = col_eta_.eta_dot;
       CX(r, 0) = (*eta)[x_[0]];
       CX(r, 1) = (*eta)[x_[1]];
-      d[r] = 0;
     }
     Wq.col(2 + r) = w;
     Weta[2 + r] = we;
@@ -162,8 +211,30 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
       s += std::conj(it.value()) * Wq(probe_pos_.at(static_cast<Index>(it.row())), j);
     return s;
   };
+  // g sampled like the columns, for the right-hand side of the reduced system.
+  auto Cg = [&](Index r) -> Complex {
+    if (!has_f) return {0, 0};
+    if (r >= static_cast<Index>(rows.size())) {
+      Complex s{0, 0};
+      for (Index u = 0; u < n_; ++u)
+        if (p_index(u) >= 0) s += (*eta)[u] * g[p_index(u)];
+      return s;
+    }
+    Complex s{0, 0};
+    for (auto& [u, c] : rows[static_cast<size_t>(r)].terms)
+      if (u != x_[0] && u != x_[1]) s += c * g[p_index(u)];
+    return s;
+  };
+  auto KXPg = [&](int x) -> Complex {
+    Complex s{0, 0};
+    if (!has_f) return s;
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, x); it; ++it) s += std::conj(it.value()) * g[static_cast<Index>(it.row())];
+    return s;
+  };
   Eigen::MatrixXcd M(N, N);
   Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(N);
+  rhs[0] = f[x_[0]] - KXPg(0);
+  rhs[1] = f[x_[1]] - KXPg(1);
   for (int a = 0; a < 2; ++a)
     for (Index j = 0; j < N; ++j) {
       Complex base = j < 2 ? K_XX_(a, j) : std::conj(CX(j - 2, a));
@@ -171,20 +242,19 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
     }
   for (Index r = 0; r < m; ++r) {
     for (Index j = 0; j < N; ++j) M(2 + r, j) = (j < 2 ? CX(r, j) : Complex(0, 0)) - CPw(r, j);
-    rhs[2 + r] = d[r];
+    rhs[2 + r] = d[r] - Cg(r);
   }
-  // Least squares with a rank test: redundant but consistent constraints are fine; contradictory
-  // ones leave a residual.
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXcd> cod;
-  cod.setThreshold(1e-11);
-  cod.compute(M);
-  Eigen::VectorXcd t = cod.solve(rhs);
-  const double res = (M * t - rhs).norm(), scale = std::max(1.0, rhs.norm());
-  if (!t.allFinite() || res > 1e-7 * scale)
-    fail(Errc::singular, "the constraints contradict each other or leave the layout undetermined (KKT residual " + std::to_string(res / scale) + ")");
+  // Entries span many orders of magnitude (K_PP^{-1} is large along near-null directions), so no
+  // relative rank threshold is meaningful: full pivoting, then consistency judged by the residual
+  // relative to |M| |t|. Redundant but consistent constraints pass; contradictory ones do not.
+  Eigen::FullPivLU<Eigen::MatrixXcd> lu(M);
+  Eigen::VectorXcd t = lu.solve(rhs);
+  const double res = (M * t - rhs).norm();
+  const double scale = M.cwiseAbs().maxCoeff() * t.norm() + rhs.norm();
+  if (!t.allFinite() || (check && !(res <= 1e-9 * scale)))
+    fail(Errc::singular, "the constraints contradict each other or leave the layout undetermined (relative KKT residual " + std::to_string(t.allFinite() ? res / scale : 1.0) + ")");
   // Final solve for the point block with the combined right-hand side.
-  const Index np = n_ - 2;
-  Eigen::VectorXcd b = -(K_PX_ * t.head(2));
+  Eigen::VectorXcd b = fP - K_PX_ * t.head(2);
   for (Index r = 0; r < m; ++r) {
     const Complex lam = t[2 + r];
     if (lam == Complex(0, 0)) continue;
@@ -196,10 +266,10 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
         if (p_index(u) >= 0) b[p_index(u)] -= (*eta)[u] * lam;
     }
   }
-  (void)np;
   Eigen::VectorXcd y = chol_.solve(b);
   VectorXc z(n_);
   for (Index u = 0; u < n_; ++u) z[u] = p_index(u) >= 0 ? y[p_index(u)] : t[u == x_[0] ? 0 : 1];
+  lambda = t.tail(m);
   return z;
 }
 

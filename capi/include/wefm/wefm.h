@@ -146,9 +146,9 @@ typedef struct wefm_options {
   int method;                /**< wefm_method. Default WEFM_METHOD_GLOBAL */
   int solver;                /**< wefm_solver. Default WEFM_SOLVER_AUTO */
   int default_edge_mode;     /**< wefm_edge_mode for repeated edges not set per edge. Default AUTO */
-  double s_step;             /**< largest continuation step in s (0 < s_step <= 2). Default 0.5 */
-  double rho_tolerance;      /**< stop the rho fixed point when max relative change < this. Default 1e-4 */
-  int max_rho_iterations;    /**< per s step; reaching it reports non-convergence. Default 30 */
+  double s_step;             /**< largest continuation step in s (0 < s_step <= 2). Default 0.25 */
+  double rho_tolerance;      /**< stop the rho fixed point when max relative change < this. Default 1e-3 */
+  int max_rho_iterations;    /**< per s step; reaching it reports non-convergence. Default 20 */
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
   int max_rollout_sweeps;    /**< Default 10000 */
   double score_threshold;    /**< return after the conformal solve if its score >= this. Default 2 (never) */
@@ -331,7 +331,7 @@ typedef struct wefm_report {
   double angle_distortion_max;
   double uv_area;                /**< total UV area as returned */
   double area_3d;
-  double s;                      /**< the s reached */
+  double s;                      /**< s of the returned layout: the best-scoring iterate, which may be below the target */
   int32_t converged;             /**< non-zero when every rho fixed point converged */
   int32_t method;
   int32_t s_steps;               /**< continuation steps taken */

@@ -24,6 +24,10 @@ struct GaugeChoice {
 // Which automatic gauges the caller's rows leave necessary, judged on a reference layout z_ref.
 GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& z_ref, const Eigen::VectorXd& eta);
 
+// Two uses of a loop far apart in 3D. Splitting these off the point block pins the similarity
+// mode firmly, which keeps K_PP well conditioned (two adjacent uses would leave it nearly singular).
+std::pair<Index, Index> far_pair_3d(const TriMesh& mesh, const Topology& topo, Index loop);
+
 // A rough layout: the 3D positions projected onto their best-fit plane (normalised units).
 VectorXc planar_projection(const TriMesh& mesh, const Topology& topo, double length_scale);
 

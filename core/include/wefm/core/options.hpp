@@ -15,9 +15,9 @@ struct Options {
   Method method = Method::Global;
   Backend backend = Backend::Auto;
   EdgeMode default_edge_mode = EdgeMode::Auto;
-  double s_step = 0.5;
-  double rho_tolerance = 1e-4;
-  int max_rho_iterations = 30;
+  double s_step = 0.25;
+  double rho_tolerance = 1e-3;
+  int max_rho_iterations = 20;
   double rollout_tolerance = 1e-10;
   int max_rollout_sweeps = 10000;
   double score_threshold = 2.0;

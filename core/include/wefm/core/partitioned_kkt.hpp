@@ -26,7 +26,9 @@ class PartitionedKKT {
   // Numeric factorisation of K_PP (the symbolic analysis is reused while the pattern is unchanged).
   void set_matrix(const SpMatC& K, Index x0, Index x1);
 
-  // min z^H K z  s.t.  rows, and sum_i eta_i z_i = 0 when eta is given.
+  // min z^H K z  s.t.  rows, and sum_i eta_i z_i = 0 when eta is given. Prefer fixing translation
+  // with a pin and shifting afterwards: the dense eta row makes the reduced system ill-conditioned
+  // (eta^T K_PP^{-1} eta is huge), which costs accuracy.
   // Throws Error(singular) when the constraints contradict each other.
   VectorXc solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta);
 
@@ -41,6 +43,9 @@ class PartitionedKKT {
     Complex eta_dot{0, 0};   // eta_P . (K_PP^{-1} source)
   };
   void build_cache(const std::vector<Index>& universe, const Eigen::VectorXd* eta);
+  // One elimination: K z + C^H lambda = f, C z = d. Returns z and writes lambda.
+  VectorXc eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f, const Eigen::VectorXcd& d,
+                     Eigen::VectorXcd& lambda, bool check);
   Index p_index(Index use) const { return p_of_[static_cast<size_t>(use)]; }
 
   SparseCholesky chol_;
@@ -48,6 +53,7 @@ class PartitionedKKT {
   std::vector<Index> p_of_;     // use -> index in P, or -1 for x0/x1
   Eigen::SparseMatrix<Complex> K_PX_;  // |P| x 2
   Eigen::Matrix2cd K_XX_;
+  SpMatC K_;  // the whole matrix, for the residuals of iterative refinement
   // cache
   bool cache_valid_ = false;
   const Eigen::VectorXd* cache_eta_ = nullptr;

@@ -1,5 +1,7 @@
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SparseCore>
 #include <array>
 #include <complex>

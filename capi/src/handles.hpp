@@ -1,0 +1,100 @@
+#pragma once
+// What the opaque handles of wefm.h hold, and the guard every entry point runs its body in: no
+// exception crosses the C boundary, every failure leaves a status and a message.
+#include <atomic>
+#include <cstring>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "wefm/core/error.hpp"
+#include "wefm/core/face.hpp"
+#include "wefm/core/mesh_io.hpp"
+#include "wefm/wefm.h"
+
+struct wefm_face {
+  std::atomic<int> refs{1};
+  wefm::Face face;
+  std::string last_error;
+  std::atomic<bool> cancel{false};
+  wefm_progress_fn progress = nullptr;
+  void* progress_user = nullptr;
+};
+
+struct wefm_mesh {
+  std::atomic<int> refs{1};
+  wefm::TriMesh mesh;
+  std::int64_t merged_vertices = 0;
+};
+
+namespace wefm::capi {
+
+void set_thread_error(const std::string& message);
+
+// Runs `body`; maps exceptions to statuses and stores the message on `err` (or thread-locally).
+template <class F>
+wefm_status guarded(std::string* err, F&& body) noexcept {
+  try {
+    body();
+    return WEFM_OK;
+  } catch (const wefm::Error& e) {
+    if (err) *err = e.what();
+    set_thread_error(e.what());
+    return static_cast<wefm_status>(static_cast<int>(e.code()));
+  } catch (const std::bad_alloc&) {
+    const char* m = "out of memory";
+    if (err) *err = m;
+    set_thread_error(m);
+    return WEFM_ERROR_OUT_OF_MEMORY;
+  } catch (const std::exception& e) {
+    const std::string m = std::string("internal error: ") + e.what();
+    if (err) *err = m;
+    set_thread_error(m);
+    return WEFM_ERROR_INTERNAL;
+  } catch (...) {
+    if (err) *err = "internal error: unknown exception";
+    set_thread_error("internal error: unknown exception");
+    return WEFM_ERROR_INTERNAL;
+  }
+}
+
+// NULL handle: thread-local message, WEFM_ERROR_NULL_ARGUMENT.
+wefm_status null_argument(const char* function, const char* argument);
+
+// Size-query output (wefm.h "Buffers"). Throws via the guard when the caller's buffer is short.
+template <class T, class S>
+void copy_out(const std::vector<S>& values, T* buffer, std::int64_t capacity, std::int64_t* count) {
+  if (!count) throw wefm::Error(wefm::Errc::invalid_argument, "count pointer is NULL");
+  *count = static_cast<std::int64_t>(values.size());
+  if (!buffer) return;
+  if (capacity < *count)
+    throw wefm::Error(static_cast<wefm::Errc>(WEFM_ERROR_BUFFER_TOO_SMALL), "buffer too small: capacity " + std::to_string(capacity) + " < " + std::to_string(*count) + " elements needed");
+  for (size_t i = 0; i < values.size(); ++i) buffer[i] = static_cast<T>(values[i]);
+}
+
+// Copy a versioned struct in or out: only the first struct_size bytes the caller knows about.
+template <class T>
+T read_versioned(const T* in, const T& defaults) {
+  T out = defaults;
+  const size_t n = in->struct_size < sizeof(T) ? in->struct_size : sizeof(T);
+  std::memcpy(&out, in, n);
+  out.struct_size = sizeof(T);
+  return out;
+}
+template <class T>
+void write_versioned(T* out, const T& value) {
+  const size_t n = out->struct_size < sizeof(T) ? out->struct_size : sizeof(T);
+  const size_t keep = out->struct_size;
+  std::memcpy(out, &value, n);
+  out->struct_size = keep;
+}
+
+void check_struct_size(size_t size, const char* name);
+const char* thread_error();
+
+}  // namespace wefm::capi
+
+#define WEFM_REQUIRE(ptr, fn)                                  \
+  do {                                                         \
+    if (!(ptr)) return wefm::capi::null_argument(fn, #ptr);    \
+  } while (0)
