@@ -82,7 +82,8 @@ int run_flatten(const std::vector<std::string>& argv) {
   job.watcher = &watcher;
   job.show_progress = !s.quiet;
   const FaceOutcome outcome = run_face_job(job);
-  if (!s.quiet && (outcome.snap.has_result || outcome.topology_built)) print_summary(job.input, outcome);
+  if (!s.quiet && outcome.exit_code != kExitCancelled && (outcome.snap.has_result || outcome.topology_built))
+    print_summary(job.input, outcome);
   std::fflush(stdout);
   if (outcome.exit_code == kExitSolver && outcome.snap.has_result)
     std::fprintf(stderr, "wefm: warning: %s\n", outcome.error.c_str());

@@ -161,7 +161,9 @@ int write_domain_png(const std::string& path, const FaceSnapshot& snap, const Do
   chunk(png, "IDAT", z);
   chunk(png, "IEND", "");
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f || std::fwrite(png.data(), 1, png.size(), f) != png.size() || std::fclose(f) != 0) {
+  bool ok = f != nullptr && std::fwrite(png.data(), 1, png.size(), f) == png.size();
+  if (f && std::fclose(f) != 0) ok = false;
+  if (!ok) {
     error = path + ": cannot write: " + std::strerror(errno);
     return kExitIo;
   }

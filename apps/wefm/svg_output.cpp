@@ -50,7 +50,7 @@ void point(TextOut& out, const View& view, const double* p) {
 std::string ratio_label(double log_ratio) {
   char buf[32];
   const double r = std::exp(log_ratio);
-  std::snprintf(buf, sizeof buf, r >= 10 || r < 0.1 ? "x%.3g" : "x%.2f", r);
+  std::snprintf(buf, sizeof buf, r >= 10 || r < 0.1 ? "&#215;%.3g" : "&#215;%.2f", r);
   return buf;
 }
 
@@ -140,7 +140,7 @@ void legend(TextOut& out, const DomainAnalysis& a, double x0, double height) {
     out.put("\"/>\n");
   }
   out.put("</linearGradient></defs>\n");
-  char buf[512];
+  char buf[1536];
   std::snprintf(buf, sizeof buf,
                 "<text x=\"%.1f\" y=\"%.1f\">area UV/3D (normalised)</text>\n"
                 "<rect x=\"%.1f\" y=\"%.1f\" width=\"24\" height=\"%.1f\" fill=\"url(#distortion)\" stroke=\"#000\"/>\n",
