@@ -48,6 +48,13 @@ def cylinder(rings=5, sectors=16, radius=1.0, height=2.0, cut=True):
     return xyz, grid_triangles(rings, sectors, wrap=not cut)
 
 
+def bumpy_patch(n=10):
+    """A doubly curved patch: not developable, so the solve iterates (rho fixed point)."""
+    u, v = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    z = 0.3 * np.sin(2.0 * u) * np.cos(3.0 * v)
+    return np.column_stack([u.ravel(), v.ravel(), z.ravel()]), grid_triangles(n, n)
+
+
 def seam_pairs(rings, sectors):
     """Facet edges along the generator theta = 0 of the closed cylinder(cut=False)."""
     return np.array([(i * sectors, (i + 1) * sectors) for i in range(rings)], dtype=np.int32)

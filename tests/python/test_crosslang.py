@@ -10,16 +10,9 @@ import numpy as np
 import pytest
 
 import wefm
-from conftest import grid_triangles
+from conftest import bumpy_patch
 
 TOLERANCE = 1e-12
-
-
-def bumpy_patch(n=10):
-    """A doubly curved patch: not developable, so the solve iterates (rho fixed point)."""
-    u, v = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
-    z = 0.3 * np.sin(2.0 * u) * np.cos(3.0 * v)
-    return np.column_stack([u.ravel(), v.ravel(), z.ravel()]), grid_triangles(n, n)
 
 
 def write_mesh(path, xyz, tri):
