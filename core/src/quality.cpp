@@ -111,11 +111,12 @@ Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z
     const Complex d1 = (z[tp.corner_use[3 * t + 1]] - z[tp.corner_use[3 * t]]) * ls, d2 = (z[tp.corner_use[3 * t + 2]] - z[tp.corner_use[3 * t]]) * ls;
     U << d1.real(), d2.real(), d1.imag(), d2.imag();
     const Eigen::Matrix2d J = U * P.inverse();
-    // Singular values of a 2x2 in closed form.
+    // Singular values of a 2x2 as (E +- F) / 2: E measures the conformal part, F the
+    // anti-conformal part, so a near-conformal map keeps full precision (the textbook
+    // sqrt(tr^2/4 - det^2) form loses half the digits exactly there).
     const double a = J(0, 0), b = J(0, 1), c = J(1, 0), d = J(1, 1);
-    const double s_ = a * a + b * b + c * c + d * d, det = std::abs(a * d - b * c);
-    const double disc = std::sqrt(std::max(0.0, s_ * s_ / 4 - det * det));
-    const double s1 = std::sqrt(std::max(0.0, s_ / 2 + disc)), s2 = std::sqrt(std::max(0.0, s_ / 2 - disc));
+    const double E = std::hypot(a + d, c - b), F = std::hypot(a - d, c + b);
+    const double s1 = 0.5 * (E + F), s2 = 0.5 * std::abs(E - F);
     const double ang = s2 > 0 ? s1 / s2 : 1e300;
     const double ar = std::abs(std::log(std::max(ratio, 1e-300)));
     q.angle_mean += w * ang;

@@ -10,8 +10,8 @@ TEST_CASE("a flat patch flattens with zero distortion for every s, with and with
       CAPTURE(mu);
       const auto r = test::solve(test::flat_patch(), test::with_s(s, mu));
       CHECK(r.report.quality.flips == 0);
-      CHECK(r.report.quality.angle_max < 1 + 1e-7);
-      CHECK(r.report.quality.area_max < 1e-7);
+      CHECK(r.report.quality.angle_max < 1 + 1e-8);
+      CHECK(r.report.quality.area_max < 1e-8);
     }
 }
 

@@ -4,7 +4,7 @@ import pytest
 import wefm
 from conftest import cylinder
 
-STAGES = {"topology", "factorise", "continuation", "quality", "mesh"}
+STAGES = {"topology", "coefficients", "assembly", "factorise", "solve", "repeated edges", "continuation", "rollout", "quality", "done", "mesh"}
 
 
 def test_cancelling_callback_raises_and_face_stays_usable():

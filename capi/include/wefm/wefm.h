@@ -298,8 +298,9 @@ WEFM_API wefm_status wefm_face_clear_constraints(wefm_face* face);
 /* ---- Solving ------------------------------------------------------------------------------- */
 
 /**
- * Progress callback: `fraction` in [0,1], `stage` a short name ("topology", "factorise",
- * "continuation", "quality", "mesh"). Return non-zero to cancel. Called on the solving thread.
+ * Progress callback: `fraction` in [0,1], `stage` one of "topology", "coefficients", "assembly",
+ * "factorise", "solve", "repeated edges", "continuation", "rollout", "quality", "done", "mesh".
+ * Return non-zero to cancel. Called on the solving thread.
  */
 typedef int (*wefm_progress_fn)(void* user_data, double fraction, const char* stage);
 WEFM_API wefm_status wefm_face_set_progress_callback(wefm_face* face, wefm_progress_fn fn, void* user_data);

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Installs every Debian package wefm needs to build, test and run its bindings.
+set -euo pipefail
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends \
+  build-essential cmake pkg-config gfortran \
+  libeigen3-dev libsuitesparse-dev libopenblas-dev libopenmesh-dev doctest-dev nlohmann-json3-dev zlib1g-dev \
+  python3 python3-numpy python3-pytest python3-setuptools >/dev/null
