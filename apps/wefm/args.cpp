@@ -108,8 +108,8 @@ std::string format_options(const std::vector<OptionSpec>& specs) {
     left += s.short_name ? std::string("-") + s.short_name + ", " : std::string("    ");
     left += "--" + s.name;
     if (!s.value_name.empty()) left += " " + s.value_name;
-    if (left.size() < 34) left.append(34 - left.size(), ' ');
-    else left += "\n" + std::string(34, ' ');
+    if (left.size() < 35) left.append(36 - left.size(), ' ');
+    else left += "\n" + std::string(36, ' ');
     text += left + s.help;
     if (!s.default_text.empty()) text += " [default: " + s.default_text + "]";
     if (s.repeatable) text += " (repeatable)";

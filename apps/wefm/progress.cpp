@@ -75,7 +75,7 @@ int Progress::update(double fraction, const char* stage) {
     const int filled = percent * kWidth / 100;
     for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '-';
     bar[kWidth] = '\0';
-    std::fprintf(stderr, "\r%s%-13s [%s] %3d%%", prefix_.c_str(), name.c_str(), bar, percent);
+    std::fprintf(stderr, "\r%s%-14s [%s] %3d%%", prefix_.c_str(), name.c_str(), bar, percent);
     std::fflush(stderr);
     bar_drawn_ = true;
   } else {
