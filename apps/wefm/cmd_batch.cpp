@@ -164,8 +164,10 @@ int run_batch(const std::vector<std::string>& argv) {
     row["message"] = o.error;
     rows.push_back(std::move(row));
   }
-  std::printf("%zu faces: %zu ok, %zu failed; outputs in %s\n", items.size(), ok, items.size() - ok,
-              outdir.string().c_str());
+  size_t partial = 0;  // not converged but written
+  for (size_t i = 0; i < items.size(); ++i) partial += started[i] && results[i].exit_code == kExitSolver && results[i].snap.has_result;
+  std::printf("%zu faces: %zu ok, %zu not converged (written), %zu failed; outputs in %s\n", items.size(), ok, partial,
+              items.size() - ok - partial, outdir.string().c_str());
   for (size_t i = 0; i < items.size(); ++i)
     if (results[i].exit_code != kExitOk)
       std::fprintf(stderr, "wefm: %s: %s\n", items[i].name.c_str(), results[i].error.c_str());
