@@ -11,8 +11,7 @@ std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<doub
   return sigma;
 }
 
-std::vector<double> compute_rho(const TriMesh& m, const Topology& tp, const Coefficients& c, const VectorXc& z) {
-  (void)m;
+std::vector<double> compute_rho(const Topology& tp, const Coefficients& c, const VectorXc& z) {
   std::vector<double> rho(c.length.size(), 1.0);
   for (size_t h = 0; h < rho.size(); ++h) {
     const Index u1 = tp.corner_use[h], u2 = tp.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))];

@@ -73,7 +73,7 @@ FlattenResult flatten(const FlattenInput& in) {
   std::vector<LinearRow> caller = in.constraints;
   for (auto& r : caller) r.rhs /= ls;
   const VectorXc z_ref = planar_projection(mesh, tp, ls);
-  GaugeChoice gauge = choose_gauges(caller, z_ref, eta);
+  GaugeChoice gauge = choose_gauges(caller, z_ref);
   // Translation is fixed by pinning one gauge use and shifting afterwards (see PartitionedKKT::solve).
   const Eigen::VectorXd* eta_ptr = nullptr;
   auto recentre = [&](VectorXc& zz) {
@@ -126,7 +126,7 @@ FlattenResult flatten(const FlattenInput& in) {
   SpMatC A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, 0.0), opt.k);
   SpMatC K = assemble_energy(A, Bp);
   rep.time.assembly += now() - t0;
-  const auto seg = longest_loop_segment(tp, coef, mesh, tp.outer_loop);
+  const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
   const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
   PartitionedKKT kkt(opt.backend);
   stage.check(0.1, "factorise");
@@ -261,7 +261,7 @@ FlattenResult flatten(const FlattenInput& in) {
     bool conv = false;
     // rho used for this step's matrices; relaxed geometrically toward the layout's rho because the
     // plain fixed point oscillates where the conformal layout shrank edges strongly.
-    std::vector<double> rho_used = compute_rho(mesh, tp, coef, z);
+    std::vector<double> rho_used = compute_rho(tp, coef, z);
     double omega = 1.0, prev_change = std::numeric_limits<double>::infinity();
     for (int it = 0; it < opt.max_rho_iterations; ++it) {
       stage.check(0.4 + 0.5 * (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / opt.s, "continuation");
@@ -284,7 +284,7 @@ FlattenResult flatten(const FlattenInput& in) {
         zn = ((zn.array() - gauge.center) * a + gauge.center).matrix();
         vec.rhs *= a;
       }
-      const std::vector<double> rho_new = compute_rho(mesh, tp, coef, zn);
+      const std::vector<double> rho_new = compute_rho(tp, coef, zn);
       step.rho_change = max_rel_change(rho_used, rho_new);
       step.iterations = it + 1;
       z = zn;

@@ -5,8 +5,7 @@
 
 namespace wefm {
 
-std::pair<Index, Index> longest_loop_segment(const Topology& tp, const Coefficients& c, const TriMesh& m, Index loop) {
-  (void)c;
+std::pair<Index, Index> longest_loop_segment(const Topology& tp, const TriMesh& m, Index loop) {
   const auto& lu = tp.loop_uses[static_cast<size_t>(loop)];
   double best = -1;
   std::pair<Index, Index> r{lu[0], lu[lu.size() > 1 ? 1 : 0]};
@@ -72,7 +71,7 @@ VectorXc planar_projection(const TriMesh& m, const Topology& tp, double ls) {
   return z;
 }
 
-GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& zr, const Eigen::VectorXd& eta) {
+GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& zr) {
   GaugeChoice g;
   if (rows.empty()) return g;
   // Each caller row acts on the gauge modes {1, z_ref} through (sum g, sum g z_ref).
@@ -115,7 +114,6 @@ GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& zr
       break;
     }
   }
-  (void)eta;
   return g;
 }
 

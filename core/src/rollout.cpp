@@ -57,7 +57,7 @@ RolloutResult rollout(const TriMesh& mesh, const Topology& tp, const Coefficient
   Index placed_count = 0;
   for (char p : placed) placed_count += p;
   if (placed_count < 2) {
-    const auto seg = longest_loop_segment(tp, c, mesh, tp.outer_loop);
+    const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
     const double L = (mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(seg.second)])] - mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(seg.first)])]).norm() / c.length_scale;
     if (placed_count == 1) fail(Errc::unsupported, "the roll-out method needs zero or at least two pins");
     rr.z[seg.first] = 0;

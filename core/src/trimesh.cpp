@@ -133,8 +133,6 @@ MeshStats compute_stats(const TriMesh& m) {
       auto fans = fans_per_vertex(gm, he);
       for (size_t v = 0; v < nv; ++v) s.non_manifold_vertices += fans[v] > 1 ? 1 : 0;
       std::vector<char> seen(he.twin.size(), 0);
-      HalfEdgeLookup look(good, static_cast<Index>(nv));
-      (void)look;
       // Boundary cycles: follow boundary half-edges; next boundary half-edge out of b found by
       // rotating around b through twins.
       for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h) {

@@ -10,7 +10,7 @@ namespace wefm {
 std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s);
 
 // rho_h = L_h / |z_I2 - z_I1| from a layout z (normalised units); degenerate UV edges give rho = 1.
-std::vector<double> compute_rho(const TriMesh& mesh, const Topology& topo, const Coefficients& c, const VectorXc& z);
+std::vector<double> compute_rho(const Topology& topo, const Coefficients& c, const VectorXc& z);
 
 // w_h of eq. 9: (1/beta_h) (sum of 1/beta over the half-edges opposite the same use)^(-k).
 std::vector<double> compute_weights(const Topology& topo, const Coefficients& c, double k);

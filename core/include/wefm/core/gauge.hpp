@@ -10,7 +10,7 @@
 namespace wefm {
 
 // The longest facet edge of a loop, as its two consecutive uses (face on the left).
-std::pair<Index, Index> longest_loop_segment(const Topology& topo, const Coefficients& c, const TriMesh& mesh, Index loop);
+std::pair<Index, Index> longest_loop_segment(const Topology& topo, const TriMesh& mesh, Index loop);
 
 // Two uses of a loop far apart in the layout z (two sweeps of farthest-point search).
 std::pair<Index, Index> far_pair(const Topology& topo, const VectorXc& z, Index loop);
@@ -22,7 +22,7 @@ struct GaugeChoice {
 };
 
 // Which automatic gauges the caller's rows leave necessary, judged on a reference layout z_ref.
-GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& z_ref, const Eigen::VectorXd& eta);
+GaugeChoice choose_gauges(const std::vector<LinearRow>& rows, const VectorXc& z_ref);
 
 // Two uses of a loop far apart in 3D. Splitting these off the point block pins the similarity
 // mode firmly, which keeps K_PP well conditioned (two adjacent uses would leave it nearly singular).
