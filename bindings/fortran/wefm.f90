@@ -111,7 +111,7 @@ module wefm
                      wefm_f_init_mesh_options, wefm_f_init_mesh_report
   end interface wefm_f_init
 
-  private :: scratch_size, get_doubles, get_ints
+  private :: get_doubles, get_ints
 
 contains
 

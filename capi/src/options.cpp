@@ -1,5 +1,10 @@
 // Defaults live in wefm::Options (core); the C structs are filled from it so the two never drift.
+#include <cstring>
+#include <string>
+
 #include "options_convert.hpp"
+
+using wefm::capi::guarded;
 
 namespace wefm::capi {
 
@@ -59,42 +64,65 @@ wefm::Options from_c(const wefm_options& c) {
 
 }  // namespace wefm::capi
 
+namespace {
+
+// The *_init protocol of wefm.h ("ABI"): `size` is the caller's sizeof, which may be smaller (older
+// header) or larger (newer header) than ours. Write our defaults into the bytes both know, zero the
+// bytes only the caller knows, and never touch anything past `size`.
+template <class T>
+wefm_status init_versioned(T* out, size_t size, const char* function, const T& defaults) noexcept {
+  if (!out) return wefm::capi::null_argument(function, "struct");
+  return guarded(nullptr, [&] {
+    if (size < sizeof(size_t))
+      throw wefm::Error(wefm::Errc::invalid_argument, std::string(function) + ": struct_size " + std::to_string(size) + " cannot even hold the struct_size field; pass sizeof(struct)");
+    unsigned char* bytes = reinterpret_cast<unsigned char*>(out);
+    const size_t known = size < sizeof(T) ? size : sizeof(T);
+    std::memcpy(bytes, &defaults, known);
+    if (size > known) std::memset(bytes + known, 0, size - known);
+    std::memcpy(bytes, &size, sizeof(size_t));  // struct_size is the first member of every versioned struct
+  });
+}
+
+template <class T>
+T zeroed() {
+  T t{};
+  t.struct_size = sizeof(T);
+  return t;
+}
+
+}  // namespace
+
 extern "C" {
 
-WEFM_API void wefm_options_init(wefm_options* options) {
-  if (options) *options = wefm::capi::to_c(wefm::Options{});
+WEFM_API wefm_status wefm_options_init(wefm_options* options, size_t struct_size) {
+  wefm_options defaults{};
+  const wefm_status st = guarded(nullptr, [&] { defaults = wefm::capi::to_c(wefm::Options{}); });
+  return st != WEFM_OK ? st : init_versioned(options, struct_size, "wefm_options_init", defaults);
 }
 
-WEFM_API void wefm_report_init(wefm_report* report) {
-  if (!report) return;
-  *report = wefm_report{};
-  report->struct_size = sizeof(wefm_report);
+WEFM_API wefm_status wefm_report_init(wefm_report* report, size_t struct_size) {
+  return init_versioned(report, struct_size, "wefm_report_init", zeroed<wefm_report>());
 }
 
-WEFM_API void wefm_mesh_info_init(wefm_mesh_info* info) {
-  if (!info) return;
-  *info = wefm_mesh_info{};
-  info->struct_size = sizeof(wefm_mesh_info);
+WEFM_API wefm_status wefm_mesh_info_init(wefm_mesh_info* info, size_t struct_size) {
+  return init_versioned(info, struct_size, "wefm_mesh_info_init", zeroed<wefm_mesh_info>());
 }
 
-WEFM_API void wefm_mesh_options_init(wefm_mesh_options* o) {
-  if (!o) return;
-  *o = wefm_mesh_options{};
-  o->struct_size = sizeof(wefm_mesh_options);
-  o->type = WEFM_MESH_FREE;
-  o->size = 0;
-  for (int j = 0; j < 4; ++j) o->corners[j] = -1;
-  o->quads = 1;
-  o->smoothing_iterations = 5;
-  o->corner_angle_deg = 30;
-  o->min_angle_deg = 28;
-  o->max_elements = 0;
+WEFM_API wefm_status wefm_mesh_options_init(wefm_mesh_options* options, size_t struct_size) {
+  wefm_mesh_options o = zeroed<wefm_mesh_options>();
+  o.type = WEFM_MESH_FREE;
+  o.size = 0;
+  for (int j = 0; j < 4; ++j) o.corners[j] = -1;
+  o.quads = 1;
+  o.smoothing_iterations = 5;
+  o.corner_angle_deg = 30;
+  o.min_angle_deg = 28;
+  o.max_elements = 0;
+  return init_versioned(options, struct_size, "wefm_mesh_options_init", o);
 }
 
-WEFM_API void wefm_mesh_report_init(wefm_mesh_report* r) {
-  if (!r) return;
-  *r = wefm_mesh_report{};
-  r->struct_size = sizeof(wefm_mesh_report);
+WEFM_API wefm_status wefm_mesh_report_init(wefm_mesh_report* report, size_t struct_size) {
+  return init_versioned(report, struct_size, "wefm_mesh_report_init", zeroed<wefm_mesh_report>());
 }
 
 }

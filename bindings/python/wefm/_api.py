@@ -5,7 +5,7 @@ build) becomes a stub raising NotImplementedError when called, so the rest of th
 tests/python/test_api_coverage.py checks this table against the header.
 """
 import ctypes
-from ctypes import POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_void_p
+from ctypes import POINTER, c_char_p, c_double, c_int, c_int32, c_int64, c_size_t, c_void_p
 
 from . import _loader
 from ._structs import MeshInfo, MeshOptions, MeshReport, Options, Report
@@ -26,9 +26,9 @@ PROTOTYPES = {
     "version": (c_char_p, []),
     "version_number": (c_int, []),
     "has_suitesparse": (c_int, []),
-    "options_init": (None, [POINTER(Options)]),
+    "options_init": (_S, [POINTER(Options), c_size_t]),
     # meshes read from files
-    "mesh_info_init": (None, [POINTER(MeshInfo)]),
+    "mesh_info_init": (_S, [POINTER(MeshInfo), c_size_t]),
     "mesh_read": (_S, [c_char_p, c_double, _vpp]),
     "mesh_create": (_S, [c_int64, _d, c_int64, _i32, _vpp]),
     "mesh_retain": (_S, [c_void_p]),
@@ -79,7 +79,7 @@ PROTOTYPES = {
     "face_get_uv": (_S, [c_void_p, _d, c_int64, _i64]),
     "face_get_edge_modes": (_S, [c_void_p, _i32, c_int64, _i64]),
     "face_get_edge_scores": (_S, [c_void_p, c_int32, _d, c_int64, _i64]),
-    "report_init": (None, [POINTER(Report)]),
+    "report_init": (_S, [POINTER(Report), c_size_t]),
     "face_get_report": (_S, [c_void_p, POINTER(Report)]),
     "face_get_step_history": (_S, [c_void_p, _d, c_int64, _i64]),
     # mapping and output
@@ -87,8 +87,8 @@ PROTOTYPES = {
     "face_map_3d_to_uv": (_S, [c_void_p, c_int64, _d, _d, _i32, _i32]),
     "face_write_obj": (_S, [c_void_p, c_char_p]),
     # meshing the domain
-    "mesh_options_init": (None, [POINTER(MeshOptions)]),
-    "mesh_report_init": (None, [POINTER(MeshReport)]),
+    "mesh_options_init": (_S, [POINTER(MeshOptions), c_size_t]),
+    "mesh_report_init": (_S, [POINTER(MeshReport), c_size_t]),
     "face_set_edge_nodes": (_S, [c_void_p, c_int32, c_int64, _d]),
     "face_clear_edge_nodes": (_S, [c_void_p]),
     "face_mesh_domain": (_S, [c_void_p, POINTER(MeshOptions), _vpp]),

@@ -8,18 +8,13 @@ import dataclasses
 
 from . import _structs as S
 from ._api import lib
+from .errors import check
 
-# wefm_*_init writes sizeof(struct) as the *library* was compiled. A newer library with a grown struct
-# would write past a mirror sized for an older header, so let it write into a roomy scratch buffer
-# and keep only the bytes this package knows, then claim exactly that size.
-_SLACK = 4096
-
-
+# wefm_*_init takes the size of the struct as the caller sees it (here: the ctypes mirror) and
+# writes no more than that, so an older mirror is never overrun by a newer library.
 def initialised(cls, init_fn):
-    scratch = (ctypes.c_char * (ctypes.sizeof(cls) + _SLACK))()
-    init_fn(ctypes.cast(scratch, ctypes.POINTER(cls)))
-    out = cls.from_buffer_copy(scratch)
-    out.struct_size = ctypes.sizeof(cls)
+    out = cls()
+    check(init_fn(ctypes.byref(out), ctypes.sizeof(cls)), function=getattr(init_fn, "__name__", ""))
     return out
 
 

@@ -36,12 +36,24 @@
  *              constraints clears results. A failed or cancelled solve keeps the previous result.
  *
  * ABI.         Structs that may grow (wefm_options, wefm_report, wefm_mesh_options,
- *              wefm_mesh_report, wefm_mesh_info) start with `struct_size`, which their *_init
- *              function sets to sizeof(struct) as the caller compiled it. The library reads and
- *              writes only the first struct_size bytes, so a program built against an older header
- *              keeps working with a newer library. Always call the *_init function first.
- *              We chose init-functions-plus-struct_size over per-option setters because FFI users
- *              (ctypes, Fortran bind(C)) map a plain struct directly and get all defaults at once.
+ *              wefm_mesh_report, wefm_mesh_info) start with `struct_size`. Their *_init function
+ *              takes the size of the struct as the CALLER compiled it:
+ *                  wefm_options o; wefm_options_init(&o, sizeof o);
+ *              (C++ may write wefm_options_init(&o): inline overloads at the end of this header
+ *              pass the size). Init writes the library's defaults into those bytes only (zeroing
+ *              any tail the library does not know) and sets struct_size to the caller's size; every
+ *              later call reads and writes only the first struct_size bytes. So a program built
+ *              against an older header, with a smaller struct, gets defaults for the fields it does
+ *              not know and is never overrun; fields newer than the loaded library are ignored
+ *              (check wefm_version_number() if one matters). Always call the *_init function first:
+ *              struct_size < sizeof(size_t) (e.g. a zeroed struct) is rejected.
+ *              Why the explicit size: an init writing sizeof(struct) as the LIBRARY was compiled
+ *              would overrun an older caller's struct, and only the caller's compiler knows the
+ *              caller's size. A static inline init in this header would know it too, but FFI callers
+ *              (ctypes, Fortran bind(C)) cannot call inline functions, and the defaults would be
+ *              frozen into each caller instead of coming from the library. We chose
+ *              init-functions-plus-struct_size over per-option setters because FFI users map a
+ *              plain struct directly and get all defaults at once.
  *              Only functions in the stable section keep their ABI across minor versions; the
  *              experimental section (WEFM_EXPERIMENTAL) may change in any release.
  */
@@ -158,8 +170,14 @@ typedef struct wefm_options {
   double min_beta;           /**< altitude/base floor for degenerate triangles (> 0). Default 1e-3 */
 } wefm_options;
 
-/** Fill `options` with the defaults and set struct_size. */
-WEFM_API void wefm_options_init(wefm_options* options);
+/**
+ * Fill `options` with the library's defaults (see "ABI" above).
+ * @param options      caller-owned; only its first `struct_size` bytes are written.
+ * @param struct_size  sizeof(wefm_options) as the caller compiled it.
+ * @return WEFM_OK; WEFM_ERROR_NULL_ARGUMENT if `options` is NULL; WEFM_ERROR_INVALID_ARGUMENT if
+ *         struct_size < sizeof(size_t). Nothing is written on error; the message is in wefm_last_error().
+ */
+WEFM_API wefm_status wefm_options_init(wefm_options* options, size_t struct_size);
 
 /* ============================================================================================= */
 /* Triangle meshes read from files                                                              */
@@ -184,7 +202,8 @@ typedef struct wefm_mesh_info {
   double mean_edge_length;
 } wefm_mesh_info;
 
-WEFM_API void wefm_mesh_info_init(wefm_mesh_info* info);
+/** Zero `info` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */
+WEFM_API wefm_status wefm_mesh_info_init(wefm_mesh_info* info, size_t struct_size);
 
 /**
  * Read a triangle mesh: OBJ, OFF, STL (ASCII or binary) or PLY, chosen by extension.
@@ -349,7 +368,8 @@ typedef struct wefm_report {
   double peak_memory_mb;         /**< process peak resident set size after the solve (0 if unknown) */
 } wefm_report;
 
-WEFM_API void wefm_report_init(wefm_report* report);
+/** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */
+WEFM_API wefm_status wefm_report_init(wefm_report* report, size_t struct_size);
 WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* report);
 /** Per continuation step: 3 doubles (s, rho iterations, final rho change). */
 WEFM_API wefm_status wefm_face_get_step_history(const wefm_face* face, double* steps, int64_t capacity, int64_t* count);
@@ -409,8 +429,10 @@ typedef struct wefm_mesh_report {
   double time_boundary, time_mesh, time_smooth, time_map;
 } wefm_mesh_report;
 
-WEFM_API void wefm_mesh_options_init(wefm_mesh_options* options);
-WEFM_API void wefm_mesh_report_init(wefm_mesh_report* report);
+/** Fill `options` with the defaults (size must still be set); `struct_size` as for wefm_options_init(). */
+WEFM_API wefm_status wefm_mesh_options_init(wefm_mesh_options* options, size_t struct_size);
+/** Zero `report` and set struct_size = `struct_size`; errors as wefm_options_init(). */
+WEFM_API wefm_status wefm_mesh_report_init(wefm_mesh_report* report, size_t struct_size);
 
 /**
  * Use caller-given 3D nodes along edge `edge` (3n doubles, in the edge's direction, including both end
@@ -435,6 +457,14 @@ WEFM_API wefm_status wefm_domain_mesh_write_obj(const wefm_domain_mesh* mesh, co
 
 #ifdef __cplusplus
 }
+
+/* C++ callers may leave out the size: these pass sizeof as the caller's compiler sees it (see "ABI"
+ * above). They are inline in the caller, so they add no symbols to the library. */
+inline wefm_status wefm_options_init(wefm_options* options) { return wefm_options_init(options, sizeof(wefm_options)); }
+inline wefm_status wefm_mesh_info_init(wefm_mesh_info* info) { return wefm_mesh_info_init(info, sizeof(wefm_mesh_info)); }
+inline wefm_status wefm_report_init(wefm_report* report) { return wefm_report_init(report, sizeof(wefm_report)); }
+inline wefm_status wefm_mesh_options_init(wefm_mesh_options* options) { return wefm_mesh_options_init(options, sizeof(wefm_mesh_options)); }
+inline wefm_status wefm_mesh_report_init(wefm_mesh_report* report) { return wefm_mesh_report_init(report, sizeof(wefm_mesh_report)); }
 #endif
 
 #endif /* WEFM_WEFM_H */
