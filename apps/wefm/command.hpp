@@ -17,5 +17,6 @@ const std::vector<Command>& commands();
 Command flatten_command();
 Command info_command();
 Command batch_command();
+Command model_command();
 
 }  // namespace wefm_cli

@@ -8,6 +8,7 @@ const std::vector<Command>& commands() {
       flatten_command(),
       info_command(),
       batch_command(),
+      model_command(),
   };
   return table;
 }

@@ -1,0 +1,262 @@
+// Face import. OCCT's triangulation of a face lives in the face's parameter space, so it is cut open
+// where the parameterisation is: a seam edge (closed on the face) has two node chains, one per side,
+// and a degenerate edge (sphere pole, cone apex) has a chain of distinct nodes at one 3D point. The
+// flattener wants the face as it is in 3D: both sides of a seam merged into one repeated edge (used
+// twice by the loop, once each way) and a degenerate edge merged into one vertex. We merge exactly
+// the nodes the topology says are the same (the two sides of a seam pairwise, all nodes of a
+// degenerate edge) rather than welding by distance, so distinct nodes that happen to be close (needle
+// triangles) are never merged. Triangles that collapse in the merge (at a pole) are dropped.
+#include "cad_face_import.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
+#include <BRep_Tool.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Iterator.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <TopoDS_Wire.hxx>
+
+namespace wefm_cad {
+
+namespace {
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(static_cast<size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int a) {
+    while (parent[static_cast<size_t>(a)] != a) a = parent[static_cast<size_t>(a)] = parent[static_cast<size_t>(parent[static_cast<size_t>(a)])];
+    return a;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+  }
+};
+
+const char* curve_type_name(GeomAbs_CurveType t) {
+  switch (t) {
+    case GeomAbs_Line: return "Line";
+    case GeomAbs_Circle: return "Circle";
+    case GeomAbs_Ellipse: return "Ellipse";
+    case GeomAbs_Hyperbola: return "Hyperbola";
+    case GeomAbs_Parabola: return "Parabola";
+    case GeomAbs_BezierCurve: return "BezierCurve";
+    case GeomAbs_BSplineCurve: return "BSplineCurve";
+    case GeomAbs_OffsetCurve: return "OffsetCurve";
+    default: return "OtherCurve";
+  }
+}
+
+// 0-based node indices of an edge's polygon on the face triangulation (empty if there is none).
+std::vector<int> polygon_nodes(const TopoDS_Edge& edge, const Handle(Poly_Triangulation)& tri, const TopLoc_Location& loc) {
+  std::vector<int> nodes;
+  const Handle(Poly_PolygonOnTriangulation)& poly = BRep_Tool::PolygonOnTriangulation(edge, tri, loc);
+  if (poly.IsNull()) return nodes;
+  for (int i = 1; i <= poly->NbNodes(); ++i) nodes.push_back(poly->Node(i) - 1);
+  return nodes;
+}
+
+// The edges of a wire in walking order, oriented (face orientation composed in). WireExplorer orders
+// them by connectivity; it can skip edges of odd wires, in which case we keep the stored order and let
+// the library's loop validation speak.
+std::vector<TopoDS_Edge> wire_edges(const TopoDS_Wire& wire, const TopoDS_Face& face) {
+  std::vector<TopoDS_Edge> ordered, stored;
+  for (BRepTools_WireExplorer ex(wire, face); ex.More(); ex.Next()) ordered.push_back(ex.Current());
+  for (TopExp_Explorer ex(wire, TopAbs_EDGE); ex.More(); ex.Next()) stored.push_back(TopoDS::Edge(ex.Current()));
+  return ordered.size() == stored.size() ? ordered : stored;
+}
+
+class Importer {
+ public:
+  Importer(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edges, CadFace& out)
+      : face_(face), edge_map_(edges), out_(out) {}
+
+  bool run() {
+    tri_ = BRep_Tool::Triangulation(face_, loc_);
+    if (tri_.IsNull() || tri_->NbTriangles() == 0) return fail("the face has no triangulation (BRepMesh made none)");
+    const gp_Trsf trsf = loc_.Transformation();
+    const int n = tri_->NbNodes();
+    points_.reserve(static_cast<size_t>(n));
+    for (int i = 1; i <= n; ++i) points_.push_back(tri_->Node(i).Transformed(trsf));
+    UnionFind uf(n);
+    if (!collect_loops() || !merge_edges(uf)) return false;
+    build_mesh(uf);
+    return out_.error.empty();
+  }
+
+ private:
+  bool fail(std::string why) {
+    out_.error = std::move(why);
+    return false;
+  }
+
+  // Loops as (model edge id, oriented edge) uses; the per-face edge list in first-use order.
+  bool collect_loops() {
+    const TopoDS_Wire outer = BRepTools::OuterWire(face_);
+    for (TopExp_Explorer wx(face_, TopAbs_WIRE); wx.More(); wx.Next()) {
+      const TopoDS_Wire wire = TopoDS::Wire(wx.Current());
+      if (!outer.IsNull() && wire.IsSame(outer)) out_.outer_loop = static_cast<int>(out_.loops.size());
+      std::vector<CadEdgeUse> loop;
+      for (const TopoDS_Edge& e : wire_edges(wire, face_)) {
+        const int id = edge_map_.FindIndex(e);
+        if (id <= 0) return fail("an edge of the face is not in the model's edge map");
+        auto [it, fresh] = local_.emplace(id, static_cast<int32_t>(out_.edges.size()));
+        if (fresh) {
+          CadEdge ce;
+          ce.id = id;
+          ce.degenerated = BRep_Tool::Degenerated(e);
+          ce.seam = BRep_Tool::IsClosed(e, face_);
+          ce.curve_type = ce.degenerated ? "Unknown" : curve_type_name(BRepAdaptor_Curve(e).GetType());
+          out_.edges.push_back(ce);
+          shapes_.push_back(e);
+        }
+        loop.push_back({it->second, e.Orientation() == TopAbs_REVERSED});
+      }
+      if (!loop.empty()) out_.loops.push_back(std::move(loop));
+    }
+    if (out_.loops.empty()) return fail("the face has no wire");
+    return true;
+  }
+
+  // Chains in triangulation node indices; merges seam sides and degenerate points.
+  bool merge_edges(UnionFind& uf) {
+    raw_chains_.resize(out_.edges.size());
+    for (size_t k = 0; k < out_.edges.size(); ++k) {
+      CadEdge& ce = out_.edges[k];
+      const TopoDS_Edge fwd = TopoDS::Edge(shapes_[k].Oriented(TopAbs_FORWARD));
+      std::vector<int> chain = polygon_nodes(fwd, tri_, loc_);
+      if (ce.degenerated) {
+        if (chain.empty()) chain = nodes_at(BRep_Tool::Pnt(TopExp::FirstVertex(fwd)));
+        if (chain.empty()) return fail("degenerate edge " + std::to_string(ce.id) + " has no node on the triangulation");
+        for (int v : chain) uf.unite(chain.front(), v);
+        raw_chains_[k] = {chain.front()};
+        continue;
+      }
+      if (chain.size() < 2) return fail("edge " + std::to_string(ce.id) + " has no polygon on the face triangulation");
+      if (ce.seam) {
+        const std::vector<int> other = polygon_nodes(TopoDS::Edge(shapes_[k].Oriented(TopAbs_REVERSED)), tri_, loc_);
+        if (other.size() != chain.size())
+          return fail("seam edge " + std::to_string(ce.id) + ": its two sides have " + std::to_string(chain.size()) +
+                      " and " + std::to_string(other.size()) + " nodes");
+        for (size_t i = 0; i < chain.size(); ++i) uf.unite(chain[i], other[i]);
+      }
+      raw_chains_[k] = chain;
+    }
+    return true;
+  }
+
+  // Triangulation nodes at a 3D point (a degenerate edge without a polygon): within a tolerance far
+  // below any edge length of the face.
+  std::vector<int> nodes_at(const gp_Pnt& p) const {
+    double scale = 0;
+    for (const gp_Pnt& q : points_) scale = std::max(scale, q.Distance(points_.front()));
+    std::vector<int> found;
+    for (size_t i = 0; i < points_.size(); ++i)
+      if (points_[i].Distance(p) <= 1e-9 * std::max(scale, 1e-300)) found.push_back(static_cast<int>(i));
+    return found;
+  }
+
+  void build_mesh(UnionFind& uf) {
+    const bool flip = face_.Orientation() == TopAbs_REVERSED;
+    std::vector<int32_t> index(points_.size(), -1);
+    auto vertex_of = [&](int node) {
+      const int r = uf.find(node);
+      int32_t& v = index[static_cast<size_t>(r)];
+      if (v < 0) {
+        v = static_cast<int32_t>(out_.xyz.size() / 3);
+        out_.xyz.insert(out_.xyz.end(), {points_[static_cast<size_t>(r)].X(), points_[static_cast<size_t>(r)].Y(),
+                                         points_[static_cast<size_t>(r)].Z()});
+      }
+      return v;
+    };
+    std::set<std::array<int32_t, 3>> seen;
+    for (int t = 1; t <= tri_->NbTriangles(); ++t) {
+      int a = 0, b = 0, c = 0;
+      tri_->Triangle(t).Get(a, b, c);
+      if (flip) std::swap(b, c);  // outward: the triangulation follows the surface normal
+      const int ra = uf.find(a - 1), rb = uf.find(b - 1), rc = uf.find(c - 1);
+      if (ra == rb || rb == rc || ra == rc) {  // collapsed at a pole or apex
+        ++out_.dropped_triangles;
+        continue;
+      }
+      std::array<int32_t, 3> key = {vertex_of(a - 1), vertex_of(b - 1), vertex_of(c - 1)};
+      std::array<int32_t, 3> sorted = key;
+      std::sort(sorted.begin(), sorted.end());
+      if (!seen.insert(sorted).second) {  // two triangles on the same corners after the merge
+        ++out_.dropped_triangles;
+        continue;
+      }
+      out_.triangles.insert(out_.triangles.end(), key.begin(), key.end());
+    }
+    if (out_.triangles.empty()) {
+      fail("no triangle left after merging seam sides and degenerate points");
+      return;
+    }
+    for (size_t k = 0; k < out_.edges.size(); ++k) {
+      std::vector<int32_t>& chain = out_.edges[k].vertices;
+      for (int node : raw_chains_[k]) {
+        const int32_t v = vertex_of(node);
+        if (chain.empty() || chain.back() != v) chain.push_back(v);
+      }
+    }
+  }
+
+  const TopoDS_Face& face_;
+  const TopTools_IndexedMapOfShape& edge_map_;
+  CadFace& out_;
+  TopLoc_Location loc_;
+  Handle(Poly_Triangulation) tri_;
+  std::vector<gp_Pnt> points_;
+  std::unordered_map<int, int32_t> local_;  // model edge id -> index in out_.edges
+  std::vector<TopoDS_Edge> shapes_;         // per face edge, one of its oriented shapes
+  std::vector<std::vector<int>> raw_chains_;
+};
+
+}  // namespace
+
+std::string surface_type_name(const TopoDS_Face& face) {
+  switch (BRepAdaptor_Surface(face, Standard_False).GetType()) {
+    case GeomAbs_Plane: return "plane";
+    case GeomAbs_Cylinder: return "cylinder";
+    case GeomAbs_Cone: return "cone";
+    case GeomAbs_Sphere: return "sphere";
+    case GeomAbs_Torus: return "torus";
+    case GeomAbs_BezierSurface: return "bezier";
+    case GeomAbs_BSplineSurface: return "bspline";
+    case GeomAbs_SurfaceOfRevolution: return "revolution";
+    case GeomAbs_SurfaceOfExtrusion: return "extrusion";
+    case GeomAbs_OffsetSurface: return "offset";
+    default: return "other";
+  }
+}
+
+CadFace import_face(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edges, int index) {
+  CadFace out;
+  out.index = index;
+  try {
+    out.surface_type = surface_type_name(face);
+    Importer(face, edges, out).run();
+  } catch (const Standard_Failure& f) {
+    out.error = std::string("Open CASCADE: ") + f.GetMessageString();
+  } catch (const std::exception& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+}  // namespace wefm_cad

@@ -1,0 +1,400 @@
+// wefm model MODEL.step -o OUTDIR [-j N] [--deflection D] [flatten options]
+//
+// Imports a CAD model (apps/cad, Open CASCADE), writes every face as input files (OBJ + topo.json:
+// the face's own reproducer) and flattens them in parallel with the same per-face pipeline as
+// `wefm flatten --topology` (face_job), one handle per thread. A face that fails to import or to
+// flatten is reported with its reason; the others carry on.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "command.hpp"
+#include "exit_codes.hpp"
+
+#ifdef WEFM_CLI_HAVE_OCCT
+#include "cad_face_files.hpp"
+#include "cad_model.hpp"
+#include "face_job.hpp"
+#include "model_atlas.hpp"
+#include "names.hpp"
+#include "output_paths.hpp"
+#endif
+
+namespace wefm_cli {
+
+namespace {
+
+#ifdef WEFM_CLI_HAVE_OCCT
+
+using Json = nlohmann::ordered_json;
+
+std::vector<OptionSpec> model_specs() {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const wefm_cad::TessellationSettings d;
+  char defl[32], ang[32];
+  std::snprintf(defl, sizeof defl, "%g", d.relative_deflection);
+  std::snprintf(ang, sizeof ang, "%g", d.angular_deflection);
+  std::vector<OptionSpec> specs = {
+      {"output", 'o', "OUTDIR", "directory for the per-face files and index.json (created; required)", "", false},
+      {"jobs", 'j', "N", "faces flattened at the same time, one thread and one handle each", std::to_string(hw), false},
+      {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
+      {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
+      {"keep-triangulation", 0, "", "keep a triangulation the file carries (BREP); mesh only faces without one", "",
+       false},
+      {"face", 0, "N", "flatten only face N (1-based, as in the index; repeatable)", "", true},
+      {"atlas", 0, "FILE.svg", "write an SVG atlas of all domains", "", false},
+      {"quiet", 'q', "", "no per-face progress lines (the summary table is still printed)", "", false},
+  };
+  for (auto& s : solver_option_specs())
+    if (s.name != "edge-mode-of") specs.push_back(s);  // edge ids differ per face: not meaningful here
+  return specs;
+}
+
+void print_help() {
+  std::printf(
+      "Usage: wefm model MODEL.step|.stp|.iges|.igs|.brep -o OUTDIR [-j N] [--deflection D] [options]\n\n"
+      "Imports a CAD model with Open CASCADE, tessellates every face (BRepMesh) and flattens all faces in\n"
+      "parallel. Seam edges become repeated edges and model edges keep their ids across faces. Writes per\n"
+      "face OUTDIR/input/fNNN.obj + fNNN.topo.json (the face as imported: `wefm flatten fNNN.obj --topology\n"
+      "fNNN.topo.json` reproduces it), OUTDIR/fNNN.obj (domain, UVs) and OUTDIR/fNNN.json (report), and\n"
+      "OUTDIR/index.json for the model. Prints a summary by surface type. One failing face is reported\n"
+      "and the others go on; the exit code is 0 when every face succeeded, else the largest code of any face.\n\n"
+      "Options:\n%s\n%s",
+      format_options(model_specs()).c_str(), exit_codes_help());
+}
+
+std::string face_name(int index) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "f%03d", index);
+  return buf;
+}
+
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+struct FaceRun {
+  const wefm_cad::CadFace* face = nullptr;
+  std::string name, input_obj, input_topo, domain_obj, report;
+  bool started = false;
+  int exit_code = kExitOk;
+  std::string reason;     // import or flatten failure
+  FaceOutcome outcome;
+};
+
+const char* status_of(const FaceRun& r) {
+  if (!r.started) return r.exit_code == kExitCancelled ? "skipped" : "failed";
+  if (r.exit_code == kExitOk) return "ok";
+  if (r.exit_code == kExitSolver && r.outcome.snap.has_result) return "not_converged";
+  return r.exit_code == kExitCancelled ? "cancelled" : "failed";
+}
+
+Json face_entry(const FaceRun& r, const std::filesystem::path& outdir) {
+  const wefm_cad::CadFace& f = *r.face;
+  const FaceSnapshot& s = r.outcome.snap;
+  const bool has = r.started && s.has_result;
+  const wefm_report& rep = s.report;
+  auto rel = [&](const std::string& p) { return std::filesystem::relative(p, outdir).string(); };
+  Json j;
+  j["face"] = f.index;
+  j["name"] = r.name;
+  j["surface_type"] = f.surface_type;
+  j["status"] = status_of(r);
+  j["exit_code"] = r.exit_code;
+  j["reason"] = r.reason;
+  j["vertices"] = f.xyz.size() / 3;
+  j["triangles"] = f.triangles.size() / 3;
+  j["dropped_triangles"] = f.dropped_triangles;
+  j["triangulation_kept"] = f.triangulation_kept;
+  size_t seams = 0, degenerate = 0;
+  for (const auto& e : f.edges) {
+    seams += e.seam;
+    degenerate += e.degenerated;
+  }
+  j["edges"] = f.edges.size();
+  j["loops"] = f.loops.size();
+  j["seam_edges"] = seams;
+  j["degenerate_edges"] = degenerate;
+  Json decisions = Json::array();
+  if (has)
+    for (const EdgeDecision& d : s.decisions) {
+      Json scores;
+      for (int m = WEFM_EDGE_FREE; m <= WEFM_EDGE_ROTATIONAL; ++m) scores[edge_mode_name(m)] = number(d.scores[static_cast<size_t>(m)]);
+      decisions.push_back({{"edge_id", d.id}, {"mode", edge_mode_name(d.mode)}, {"requested", edge_mode_name(d.requested)},
+                           {"scores", scores}});
+    }
+  j["seam_decisions"] = decisions;
+  j["score"] = has ? number(rep.score) : Json(nullptr);
+  j["flipped_triangles"] = has ? Json(rep.flipped_triangles) : Json(nullptr);
+  j["boundary_intersections"] = has ? Json(rep.boundary_intersections) : Json(nullptr);
+  j["area_distortion_mean"] = has ? number(rep.area_distortion_mean) : Json(nullptr);
+  j["area_distortion_max"] = has ? number(rep.area_distortion_max) : Json(nullptr);
+  j["angle_distortion_mean"] = has ? number(rep.angle_distortion_mean) : Json(nullptr);
+  j["angle_distortion_max"] = has ? number(rep.angle_distortion_max) : Json(nullptr);
+  j["s"] = has ? number(rep.s) : Json(nullptr);
+  j["time"] = r.started ? Json(r.outcome.time.total) : Json(nullptr);
+  Json files;
+  if (!r.input_obj.empty()) {
+    files["input_obj"] = rel(r.input_obj);
+    files["input_topology"] = rel(r.input_topo);
+  }
+  for (const auto& [what, path] : r.outcome.outputs) files[what == "uv mesh" ? "domain_obj" : what] = rel(path);
+  j["files"] = files;
+  return j;
+}
+
+struct TypeRow {
+  int faces = 0, ok = 0, not_converged = 0, failed = 0, flipped_faces = 0, intersecting_faces = 0;
+  int64_t flips = 0, intersections = 0;
+  double score_sum = 0;
+  int scored = 0;
+  double time = 0;
+};
+
+void add_to_row(TypeRow& row, const FaceRun& r) {
+  ++row.faces;
+  const std::string st = status_of(r);
+  if (st == "ok") ++row.ok;
+  else if (st == "not_converged") ++row.not_converged;
+  else ++row.failed;
+  row.time += r.started ? r.outcome.time.total : 0;
+  const FaceSnapshot& s = r.outcome.snap;
+  if (!r.started || !s.has_result) return;
+  row.flips += s.report.flipped_triangles;
+  row.flipped_faces += s.report.flipped_triangles > 0;
+  row.intersections += s.report.boundary_intersections;
+  row.intersecting_faces += s.report.boundary_intersections > 0;
+  if (std::isfinite(s.report.score)) {
+    row.score_sum += s.report.score;
+    ++row.scored;
+  }
+}
+
+void print_row(const char* name, const TypeRow& r) {
+  char score[16] = "-";
+  if (r.scored) std::snprintf(score, sizeof score, "%.4f", r.score_sum / r.scored);
+  std::printf("%-12s %6d %5d %8d %7d %11d %8lld %10d %9s %8.2fs\n", name, r.faces, r.ok, r.not_converged, r.failed,
+              r.flipped_faces, static_cast<long long>(r.flips), r.intersecting_faces, score, r.time);
+}
+
+int run_model(const std::vector<std::string>& argv) {
+  const auto specs = model_specs();
+  ParsedArgs args;
+  std::string error;
+  FlattenSettings settings;
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, settings, error))) {
+    std::fprintf(stderr, "wefm model: %s (see wefm model --help)\n", error.c_str());
+    return kExitUsage;
+  }
+  if (args.help) {
+    print_help();
+    return kExitOk;
+  }
+  if (args.positionals.size() != 1 || !args.has("output")) {
+    std::fprintf(stderr, "wefm model: expected one MODEL file and -o OUTDIR (see wefm model --help)\n");
+    return kExitUsage;
+  }
+  long long jobs = std::max(1u, std::thread::hardware_concurrency());
+  if (args.has("jobs") && (!parse_int(args.value("jobs"), jobs) || jobs < 1 || jobs > 1024)) {
+    std::fprintf(stderr, "wefm model: -j: expected a thread count >= 1, got '%s'\n", args.value("jobs").c_str());
+    return kExitUsage;
+  }
+  wefm_cad::TessellationSettings tess;
+  for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &tess.relative_deflection},
+                             std::pair<const char*, double*>{"angular-deflection", &tess.angular_deflection}}) {
+    if (args.has(name) && (!parse_double(args.value(name), *field) || !(*field > 0))) {
+      std::fprintf(stderr, "wefm model: --%s: expected a number > 0, got '%s'\n", name, args.value(name).c_str());
+      return kExitUsage;
+    }
+  }
+  tess.keep_triangulation = args.has("keep-triangulation");
+  std::set<long long> only;
+  if (args.has("face"))
+    for (const std::string& v : args.values.at("face")) {
+      long long k = 0;
+      if (!parse_int(v, k) || k < 1) {
+        std::fprintf(stderr, "wefm model: --face: expected a face number >= 1, got '%s'\n", v.c_str());
+        return kExitUsage;
+      }
+      only.insert(k);
+    }
+  const bool quiet = args.has("quiet");
+  const std::string model_path = args.positionals[0];
+  const std::filesystem::path outdir = args.value("output");
+
+  wefm_cad::CadModel model;
+  if (!wefm_cad::load_cad_model(model_path, tess, model, error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return kExitIo;
+  }
+  if (!make_dirs((outdir / "input").string(), error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return kExitIo;
+  }
+  std::vector<FaceRun> runs;
+  for (const auto& f : model.faces) {
+    if (!only.empty() && !only.count(f.index)) continue;
+    FaceRun r;
+    r.face = &f;
+    r.name = face_name(f.index);
+    if (!f.error.empty()) {
+      r.exit_code = kExitInvalid;
+      r.reason = "import: " + f.error;
+    } else {
+      r.input_obj = (outdir / "input" / (r.name + ".obj")).string();
+      r.input_topo = (outdir / "input" / (r.name + ".topo.json")).string();
+      if (!wefm_cad::write_face_obj(r.input_obj, f, model_path, error) ||
+          !wefm_cad::write_face_topology(r.input_topo, f, model_path, error)) {
+        std::fprintf(stderr, "wefm: %s\n", error.c_str());
+        return kExitIo;
+      }
+      r.domain_obj = (outdir / (r.name + ".obj")).string();
+      r.report = (outdir / (r.name + ".json")).string();
+    }
+    runs.push_back(std::move(r));
+  }
+  if (!quiet)
+    std::fprintf(stderr, "%s: %zu faces, %lld edges; read %.2f s, BRepMesh %.2f s (deflection %g), import %.2f s\n",
+                 model_path.c_str(), model.faces.size(), static_cast<long long>(model.edge_count), model.time_read,
+                 model.time_mesh, model.linear_deflection, model.time_extract);
+
+  install_interrupt_handler();
+  CancelWatcher watcher;
+  std::atomic<size_t> next{0}, finished{0};
+  std::mutex print_mutex;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto worker = [&] {
+    for (size_t i; !interrupted() && (i = next++) < runs.size();) {
+      FaceRun& r = runs[i];
+      if (r.input_obj.empty()) continue;  // import failed: nothing to flatten
+      FaceJob job;
+      job.input = r.input_obj;
+      job.output_obj = r.domain_obj;
+      job.settings = settings;
+      job.settings.topology_path = r.input_topo;
+      job.settings.report_path = r.report;
+      job.watcher = &watcher;
+      r.started = true;
+      r.outcome = run_face_job(job);
+      r.exit_code = r.outcome.exit_code;
+      r.reason = r.outcome.error;
+      const size_t done = ++finished;
+      if (!quiet) {
+        std::lock_guard<std::mutex> lock(print_mutex);
+        std::fprintf(stderr, "[%zu/%zu] %s %s: %s (%.2f s)\n", done, runs.size(), r.name.c_str(),
+                     r.face->surface_type.c_str(), status_of(r), r.outcome.time.total);
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), std::max<size_t>(1, runs.size()));
+  for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  for (FaceRun& r : runs)
+    if (!r.started && r.input_obj.size() && interrupted()) r.exit_code = kExitCancelled;
+
+  // Summary by surface type.
+  std::map<std::string, TypeRow> by_type;
+  TypeRow total;
+  for (const FaceRun& r : runs) {
+    add_to_row(by_type[r.face->surface_type], r);
+    add_to_row(total, r);
+  }
+  std::printf("%-12s %6s %5s %8s %7s %11s %8s %10s %9s %9s\n", "surface", "faces", "ok", "not_conv", "failed",
+              "flip_faces", "flips", "bnd_int", "mean_scr", "time");
+  for (const auto& [type, row] : by_type) print_row(type.c_str(), row);
+  print_row("all", total);
+  std::printf("%s: %d faces, %d ok, %d not converged (written), %d failed; flatten wall time %.2f s with -j %zu; outputs in %s\n",
+              model_path.c_str(), total.faces, total.ok, total.not_converged, total.failed, wall, n_threads,
+              outdir.string().c_str());
+  int exit_code = kExitOk;
+  for (const FaceRun& r : runs) {
+    exit_code = std::max(exit_code, r.exit_code);
+    if (r.exit_code != kExitOk)
+      std::fprintf(stderr, "wefm: %s face %d (%s, %zu triangles): %s\n", model_path.c_str(), r.face->index,
+                   r.face->surface_type.c_str(), r.face->triangles.size() / 3, r.reason.c_str());
+  }
+
+  // Index.
+  Json index;
+  index["wefm_version"] = wefm_version();
+  index["model"] = model_path;
+  index["format"] = model.format;
+  index["faces_in_model"] = model.faces.size();
+  index["edges_in_model"] = model.edge_count;
+  index["bbox_diagonal"] = model.bbox_diagonal;
+  index["tessellation"] = {{"relative_deflection", tess.relative_deflection},
+                           {"linear_deflection", model.linear_deflection},
+                           {"angular_deflection", tess.angular_deflection},
+                           {"keep_triangulation", tess.keep_triangulation}};
+  index["timings"] = {{"read", model.time_read}, {"mesh", model.time_mesh}, {"import", model.time_extract},
+                      {"flatten_wall", wall}, {"jobs", n_threads}};
+  Json summary = Json::object();
+  for (const auto& [type, row] : by_type)
+    summary[type] = {{"faces", row.faces}, {"ok", row.ok}, {"not_converged", row.not_converged}, {"failed", row.failed},
+                     {"flipped_faces", row.flipped_faces}, {"flipped_triangles", row.flips},
+                     {"intersecting_faces", row.intersecting_faces}, {"boundary_intersections", row.intersections},
+                     {"mean_score", row.scored ? Json(row.score_sum / row.scored) : Json(nullptr)}};
+  index["summary"] = summary;
+  Json faces = Json::array();
+  for (const FaceRun& r : runs) faces.push_back(face_entry(r, outdir));
+  index["faces"] = faces;
+  const std::string index_path = (outdir / "index.json").string();
+  {
+    std::ofstream out(index_path);
+    if (out) out << index.dump(1) << '\n';
+    if (!out) {
+      std::fprintf(stderr, "wefm: cannot write %s\n", index_path.c_str());
+      exit_code = std::max<int>(exit_code, kExitIo);
+    }
+  }
+  if (args.has("atlas")) {
+    std::vector<AtlasCell> cells;
+    std::vector<std::string> captions;
+    for (const FaceRun& r : runs) {
+      AtlasCell c;
+      c.title = r.name + " " + r.face->surface_type + " (" + std::to_string(r.face->triangles.size() / 3) + " tris)";
+      c.snap = r.started ? &r.outcome.snap : nullptr;
+      char buf[96];
+      if (c.snap && c.snap->has_result)
+        std::snprintf(buf, sizeof buf, "score %.4f, %lld flips, %lld bnd int%s", c.snap->report.score,
+                      static_cast<long long>(c.snap->report.flipped_triangles),
+                      static_cast<long long>(c.snap->report.boundary_intersections),
+                      r.exit_code == kExitOk ? "" : " (not converged)");
+      c.caption = c.snap && c.snap->has_result ? std::string(buf) : std::string(status_of(r)) + ": " + r.reason;
+      cells.push_back(std::move(c));
+    }
+    const std::string atlas = args.value("atlas");
+    if (!make_parent_dirs(atlas, error) ||
+        write_model_atlas(atlas, std::filesystem::path(model_path).filename().string() + ": UV domains", cells, error) != kExitOk) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      exit_code = std::max<int>(exit_code, kExitIo);
+    }
+  }
+  if (interrupted()) exit_code = kExitCancelled;
+  return exit_code;
+}
+
+#else  // built without Open CASCADE
+
+int run_model(const std::vector<std::string>&) {
+  std::fprintf(stderr,
+               "wefm model: this wefm was built without CAD import (WEFM_WITH_OCCT=OFF; install Debian's "
+               "libocct-*-dev packages, scripts/install-deps.sh, and reconfigure)\n");
+  return kExitIo;
+}
+
+#endif
+
+}  // namespace
+
+Command model_command() { return {"model", "import a CAD model (STEP, IGES, BREP) and flatten every face", run_model}; }
+
+}  // namespace wefm_cli
