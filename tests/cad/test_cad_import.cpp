@@ -1,0 +1,234 @@
+// CAD import through the public C API: a STEP cylinder's lateral face arrives as an annulus with its
+// seam as one repeated edge, and flattens periodic to a rectangle with zero distortion; model edges
+// keep their ids across faces; sphere poles and a cone apex become single vertices.
+#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepTools.hxx>
+
+#include "cad_model.hpp"
+#include "cad_wefm.hpp"
+
+namespace {
+
+using wefm_cad::CadFace;
+
+const CadFace* face_of_type(const wefm_cad::CadModel& m, const std::string& type) {
+  for (const CadFace& f : m.faces)
+    if (f.surface_type == type) return &f;
+  return nullptr;
+}
+
+wefm_cad::CadModel load(const std::string& path) {
+  wefm_cad::CadModel model;
+  std::string error;
+  const bool ok = wefm_cad::load_cad_model(path, wefm_cad::TessellationSettings{}, model, error);
+  INFO(error);
+  REQUIRE(ok);
+  return model;
+}
+
+// Writes an OCCT shape to a temporary BREP file and imports it as a model.
+wefm_cad::CadModel load_shape(const TopoDS_Shape& shape, const char* name) {
+  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  REQUIRE(BRepTools::Write(shape, path.c_str()));
+  wefm_cad::CadModel m = load(path);
+  std::filesystem::remove(path);
+  return m;
+}
+
+struct Face {
+  wefm_face* f = nullptr;
+  Face() { REQUIRE(wefm_face_create(&f) == WEFM_OK); }
+  ~Face() { wefm_face_release(f); }
+};
+
+template <class T, class G>
+std::vector<T> fetch(G get) {
+  int64_t n = 0;
+  REQUIRE(get(nullptr, 0, &n) == WEFM_OK);
+  std::vector<T> v(static_cast<size_t>(n));
+  if (n) REQUIRE(get(v.data(), n, &n) == WEFM_OK);
+  return v;
+}
+
+double cross(const std::array<double, 2>& o, const std::array<double, 2>& a, const std::array<double, 2>& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+// Area of the convex hull (monotone chain).
+double hull_area(std::vector<std::array<double, 2>> p) {
+  std::sort(p.begin(), p.end());
+  std::vector<std::array<double, 2>> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  double a = 0;
+  for (size_t i = 0; i < h.size(); ++i) {
+    const auto& q = h[i];
+    const auto& r = h[(i + 1) % h.size()];
+    a += q[0] * r[1] - q[1] * r[0];
+  }
+  return 0.5 * std::fabs(a);
+}
+
+}  // namespace
+
+TEST_CASE("STEP cylinder: the seam is one repeated edge and model edges keep their ids") {
+  const wefm_cad::CadModel m = load(WEFM_TEST_DATA "/cylinder.step");
+  CHECK(m.format == "step");
+  REQUIRE(m.faces.size() == 3);
+  const CadFace* cyl = face_of_type(m, "cylinder");
+  REQUIRE(cyl);
+  CHECK(cyl->error.empty());
+  REQUIRE(cyl->loops.size() == 1);
+  CHECK(cyl->loops[0].size() == 4);  // circle, seam, circle, seam reversed
+  int seams = 0;
+  for (const auto& e : cyl->edges) seams += e.seam;
+  CHECK(seams == 1);
+  // The seam is walked once each way.
+  std::map<int32_t, std::vector<bool>> uses;
+  for (const auto& u : cyl->loops[0]) uses[u.edge].push_back(u.reversed);
+  for (const auto& [edge, dirs] : uses)
+    if (cyl->edges[static_cast<size_t>(edge)].seam) CHECK((dirs.size() == 2 && dirs[0] != dirs[1]));
+  // The circles are shared with the two planes under the same ids and with the same 3D points.
+  for (const auto& e : cyl->edges) {
+    if (e.seam) continue;
+    int found = 0;
+    for (const CadFace& f : m.faces) {
+      if (&f == cyl) continue;
+      for (const auto& g : f.edges) {
+        if (g.id != e.id) continue;
+        ++found;
+        REQUIRE(g.vertices.size() == e.vertices.size());
+        for (size_t i = 0; i < e.vertices.size(); ++i)
+          for (int c = 0; c < 3; ++c)
+            CHECK(f.xyz[3 * static_cast<size_t>(g.vertices[i]) + static_cast<size_t>(c)] ==
+                  doctest::Approx(cyl->xyz[3 * static_cast<size_t>(e.vertices[i]) + static_cast<size_t>(c)]));
+      }
+    }
+    CHECK(found == 1);
+  }
+}
+
+TEST_CASE("STEP cylinder: the lateral face flattens periodic to a rectangle with zero distortion") {
+  const wefm_cad::CadModel m = load(WEFM_TEST_DATA "/cylinder.step");
+  const CadFace* cyl = face_of_type(m, "cylinder");
+  REQUIRE(cyl);
+  Face face;
+  std::string error;
+  REQUIRE_MESSAGE(wefm_cad::set_face_from_cad(face.f, *cyl, error) == WEFM_OK, error);
+  REQUIRE(wefm_face_build(face.f) == WEFM_OK);
+  int64_t edges = 0;
+  REQUIRE(wefm_face_edge_count(face.f, &edges) == WEFM_OK);
+  CHECK(edges == static_cast<int64_t>(cyl->edges.size()));
+  int32_t seam_edge = -1;
+  for (int32_t e = 0; e < edges; ++e) {
+    int32_t repeated = 0;
+    REQUIRE(wefm_face_edge_is_repeated(face.f, e, &repeated) == WEFM_OK);
+    CHECK(repeated == (cyl->edges[static_cast<size_t>(e)].seam ? 1 : 0));
+    if (repeated) seam_edge = e;
+  }
+  REQUIRE(seam_edge >= 0);
+  // An annulus: the seam vertices have two uses each, all others one.
+  int64_t uses = 0;
+  REQUIRE(wefm_face_use_count(face.f, &uses) == WEFM_OK);
+  CHECK(uses == static_cast<int64_t>(cyl->xyz.size() / 3 + cyl->edges[static_cast<size_t>(seam_edge)].vertices.size()));
+
+  REQUIRE(wefm_face_set_edge_mode(face.f, seam_edge, WEFM_EDGE_PERIODIC) == WEFM_OK);
+  REQUIRE(wefm_face_solve(face.f) == WEFM_OK);
+  wefm_report r;
+  wefm_report_init(&r);
+  REQUIRE(wefm_face_get_report(face.f, &r) == WEFM_OK);
+  CHECK(r.flipped_triangles == 0);
+  CHECK(r.boundary_intersections == 0);
+  CHECK(r.area_distortion_max < 1e-6);
+  CHECK(r.angle_distortion_max < 1 + 1e-6);
+
+  // Isometric up to one scale: every facet edge keeps its length ratio.
+  const auto uv = fetch<double>([&](double* b, int64_t c, int64_t* n) { return wefm_face_get_uv(face.f, b, c, n); });
+  const auto tri_uses =
+      fetch<int32_t>([&](int32_t* b, int64_t c, int64_t* n) { return wefm_face_get_triangle_uses(face.f, b, c, n); });
+  double lo = 1e300, hi = 0;
+  for (size_t t = 0; t < tri_uses.size() / 3; ++t)
+    for (int c = 0; c < 3; ++c) {
+      const size_t a = 3 * t + static_cast<size_t>(c), b = 3 * t + static_cast<size_t>((c + 1) % 3);
+      const int32_t va = cyl->triangles[a], vb = cyl->triangles[b];
+      double d3 = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double d = cyl->xyz[3 * static_cast<size_t>(va) + static_cast<size_t>(k)] -
+                         cyl->xyz[3 * static_cast<size_t>(vb) + static_cast<size_t>(k)];
+        d3 += d * d;
+      }
+      const double du = uv[2 * static_cast<size_t>(tri_uses[a])] - uv[2 * static_cast<size_t>(tri_uses[b])];
+      const double dv = uv[2 * static_cast<size_t>(tri_uses[a]) + 1] - uv[2 * static_cast<size_t>(tri_uses[b]) + 1];
+      const double ratio = std::sqrt((du * du + dv * dv) / d3);
+      lo = std::min(lo, ratio);
+      hi = std::max(hi, ratio);
+    }
+  CHECK(hi / lo < 1 + 1e-6);
+  // A rectangle: convex, so its hull has the domain's area.
+  std::vector<std::array<double, 2>> pts;
+  for (size_t i = 0; i < uv.size() / 2; ++i) pts.push_back({uv[2 * i], uv[2 * i + 1]});
+  CHECK(hull_area(pts) == doctest::Approx(r.uv_area).epsilon(1e-6));
+}
+
+TEST_CASE("sphere poles and a cone apex become single vertices and the topology is accepted") {
+  struct Case {
+    const char* name;
+    TopoDS_Shape shape;
+    const char* type;
+    size_t degenerate;
+  };
+  const Case cases[] = {{"wefm_sphere.brep", BRepPrimAPI_MakeSphere(5.0).Shape(), "sphere", 2},
+                        {"wefm_cone.brep", BRepPrimAPI_MakeCone(4.0, 0.0, 8.0).Shape(), "cone", 1}};
+  for (const Case& c : cases) {
+    CAPTURE(c.name);
+    const wefm_cad::CadModel m = load_shape(c.shape, c.name);
+    const CadFace* f = face_of_type(m, c.type);
+    REQUIRE(f);
+    CHECK(f->error.empty());
+    size_t degenerate = 0, seams = 0;
+    for (const auto& e : f->edges) {
+      if (e.degenerated) {
+        ++degenerate;
+        CHECK(e.vertices.size() == 1);
+      }
+      seams += e.seam;
+    }
+    CHECK(degenerate == c.degenerate);
+    CHECK(seams == 1);
+    Face face;
+    std::string error;
+    REQUIRE_MESSAGE(wefm_cad::set_face_from_cad(face.f, *f, error) == WEFM_OK, error);
+    CHECK_MESSAGE(wefm_face_build(face.f) == WEFM_OK, wefm_face_last_error(face.f));
+  }
+}
+
+TEST_CASE("unreadable and unknown files are reported, not thrown") {
+  wefm_cad::CadModel m;
+  std::string error;
+  CHECK_FALSE(wefm_cad::load_cad_model(WEFM_TEST_DATA "/no_such_file.step", {}, m, error));
+  CHECK(error.find("no_such_file") != std::string::npos);
+  CHECK_FALSE(wefm_cad::load_cad_model(WEFM_TEST_DATA "/pyramid5.obj", {}, m, error));
+  CHECK(error.find("unknown CAD format") != std::string::npos);
+}
