@@ -1,0 +1,118 @@
+#!/usr/bin/env bash
+# Regenerates the "CAD models" section of docs/RESULTS.md: runs `wefm model` on every sample model in
+# CAD_DIR and tabulates, per model, the faces by surface type (ok / not converged / failed, flips,
+# boundary intersections, score) and every face that is not clean. Only the text between the
+# cad-results markers is replaced; the rest of docs/RESULTS.md is left alone.
+#
+#   scripts/cad_results.sh [BUILD_DIR]        # default build/release; needs WEFM_WITH_OCCT=ON
+#
+# Environment: CAD_DIR (default /work/shared/data/cad), OUT (per-model outputs, default
+# BUILD_DIR/cad_results), JOBS (default 2), ATLAS_MODEL (model whose atlas goes to
+# docs/cad_atlas_<model>.svg, default Ball), CAD_FAILURES (if set, the input OBJ + topo.json of every
+# face that is not clean are copied there as <model>_fNNN.obj / .topo.json, to reproduce them with
+# `wefm flatten X.obj --topology X.topo.json`).
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD="${1:-$ROOT/build/release}"
+WEFM="$BUILD/apps/wefm"
+CAD_DIR="${CAD_DIR:-/work/shared/data/cad}"
+OUT="${OUT:-$BUILD/cad_results}"
+JOBS="${JOBS:-2}"
+ATLAS_MODEL="${ATLAS_MODEL:-Ball}"
+[ -x "$WEFM" ] || { echo "cad_results: no $WEFM (build first)" >&2; exit 2; }
+"$WEFM" model --help >/dev/null 2>&1 || { echo "cad_results: $WEFM was built without WEFM_WITH_OCCT" >&2; exit 2; }
+
+mkdir -p "$OUT"
+for model in "$CAD_DIR"/*.step "$CAD_DIR"/*.stp "$CAD_DIR"/*.iges "$CAD_DIR"/*.igs "$CAD_DIR"/*.brep "$CAD_DIR"/*.rle; do
+  [ -e "$model" ] || continue
+  name="$(basename "${model%.*}")"
+  rm -rf "${OUT:?}/$name"
+  atlas=()
+  [ "$name" = "$ATLAS_MODEL" ] && atlas=(--atlas "$ROOT/docs/cad_atlas_$name.svg")
+  start=$(date +%s%N)
+  rc=0
+  "$WEFM" model "$model" -o "$OUT/$name" -j "$JOBS" --quiet "${atlas[@]}" >"$OUT/$name.stdout" 2>"$OUT/$name.stderr" || rc=$?
+  end=$(date +%s%N)
+  echo "{\"exit_code\": $rc, \"wall_ms\": $(( (end - start) / 1000000 ))}" >"$OUT/$name.run.json"
+  echo "$name: exit $rc"
+done
+
+python3 - "$OUT" "$ROOT/docs/RESULTS.md" "$CAD_DIR" "${CAD_FAILURES:-}" <<'PY'
+import json, os, shutil, subprocess, sys
+out, results, cad_dir, failures = sys.argv[1:5]
+lines = ["## CAD models", "",
+         "Produced by `scripts/cad_results.sh` (do not edit by hand): `wefm model MODEL -o OUT -j 2` with the",
+         "default settings (BRepMesh linear deflection 0.1 % of the bounding-box diagonal, angular 0.5 rad;",
+         "solver defaults, repeated edges `auto`) on every model of `" + cad_dir + "`.",
+         "`not conv.` faces hit the rho iteration cap: their best layout is written and counted here.",
+         "A face is *clean* when it is ok with 0 flipped triangles and 0 boundary intersections.", ""]
+try:
+    version = subprocess.run(["git", "-C", os.path.dirname(results), "rev-parse", "--short", "HEAD"],
+                             capture_output=True, text=True).stdout.strip()
+    lines += [f"Commit `{version}` (the working tree may hold uncommitted solver work).", ""]
+except OSError:
+    pass
+names = sorted(d for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "index.json")))
+overall = []
+for name in names:
+    idx = json.load(open(os.path.join(out, name, "index.json")))
+    run = json.load(open(os.path.join(out, name + ".run.json")))
+    faces = idx["faces"]
+    tris = sum(f["triangles"] for f in faces)
+    t = idx["timings"]
+    lines += [f"### {os.path.basename(idx['model'])}", "",
+              f"{len(faces)} faces, {idx['edges_in_model']} edges, {tris} triangles; read {t['read']:.2f} s, "
+              f"BRepMesh {t['mesh']:.2f} s, import {t['import']:.3f} s, flatten {t['flatten_wall']:.2f} s "
+              f"(wall, -j {t['jobs']}); exit code {run['exit_code']}.", "",
+              "| surface | faces | triangles | ok | not conv. | failed | faces with flips | flipped triangles "
+              "| boundary intersections | mean score | min score |",
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    def row(label, fs):
+        sc = [f["score"] for f in fs if f["score"] is not None]
+        n = lambda k: sum(1 for f in fs if f["status"] == k)
+        flips = [f["flipped_triangles"] or 0 for f in fs]
+        inter = [f["boundary_intersections"] or 0 for f in fs]
+        return (f"| {label} | {len(fs)} | {sum(f['triangles'] for f in fs)} | {n('ok')} | {n('not_converged')} | "
+                f"{len(fs) - n('ok') - n('not_converged')} | {sum(1 for x in flips if x)} | {sum(flips)} | "
+                f"{sum(inter)} | " + (f"{sum(sc) / len(sc):.4f} | {min(sc):.4f} |" if sc else "- | - |"))
+    for st in sorted({f["surface_type"] for f in faces}):
+        lines.append(row(st, [f for f in faces if f["surface_type"] == st]))
+    lines.append(row("**all**", faces))
+    overall += [(name, f) for f in faces]
+    bad = [f for f in faces if f["status"] != "ok" or (f["flipped_triangles"] or 0) or (f["boundary_intersections"] or 0)]
+    if bad:
+        lines += ["", "Faces that are not clean:", "",
+                  "| face | surface | triangles | seams (decision) | status | score | flips | bnd. int. | reason |",
+                  "|---:|---|---:|---|---|---:|---:|---:|---|"]
+        for f in bad:
+            seams = ", ".join(f"{d['edge_id']}:{d['mode']}" for d in f["seam_decisions"]) or "-"
+            reason = f["reason"].split(": ", 2)[-1] if f["reason"] else ""
+            reason = reason.replace("|", "/")[:110]
+            score = f"{f['score']:.4f}" if f["score"] is not None else "-"
+            lines.append(f"| {f['face']} | {f['surface_type']} | {f['triangles']} | {seams} | {f['status']} | {score} | "
+                         f"{f['flipped_triangles']} | {f['boundary_intersections']} | {reason} |")
+            if failures:
+                os.makedirs(failures, exist_ok=True)
+                for key, ext in (("input_obj", ".obj"), ("input_topology", ".topo.json")):
+                    if key in f["files"]:
+                        shutil.copy(os.path.join(out, name, f["files"][key]), os.path.join(failures, f"{name}_{f['name']}{ext}"))
+    lines.append("")
+clean = sum(1 for _, f in overall if f["status"] == "ok" and not f["flipped_triangles"] and not f["boundary_intersections"])
+lines += [f"All models: {len(overall)} faces, {clean} clean, "
+          f"{sum(1 for _, f in overall if f['status'] == 'not_converged')} not converged, "
+          f"{sum(1 for _, f in overall if f['status'] not in ('ok', 'not_converged'))} failed, "
+          f"{sum(1 for _, f in overall if f['flipped_triangles'])} with flipped triangles.", ""]
+atlases = sorted(p for p in os.listdir(os.path.join(os.path.dirname(results))) if p.startswith("cad_atlas_"))
+for a in atlases:
+    lines += [f"Atlas of every domain of one model ({a}; colour = area distortion, black = flipped, green = seams):", "",
+              f"![atlas]({a})", ""]
+section = "<!-- cad-results:begin -->\n" + "\n".join(lines) + "<!-- cad-results:end -->\n"
+text = open(results).read() if os.path.exists(results) else "# Results\n\n"
+b, e = text.find("<!-- cad-results:begin -->"), text.find("<!-- cad-results:end -->")
+if b >= 0 and e > b:
+    text = text[:b] + section + text[e + len("<!-- cad-results:end -->\n"):]
+else:
+    text = text.rstrip("\n") + "\n\n" + section
+open(results, "w").write(text)
+print(f"wrote the CAD section of {results}")
+PY
