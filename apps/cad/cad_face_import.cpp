@@ -153,11 +153,25 @@ class Importer {
         if (other.size() != chain.size())
           return fail("seam edge " + std::to_string(ce.id) + ": its two sides have " + std::to_string(chain.size()) +
                       " and " + std::to_string(other.size()) + " nodes");
+        // Both sides are discretised at the same curve parameters, so node i of one side lies on
+        // node i of the other. Checked, because merging the wrong nodes would tear the mesh.
+        const double tol = 1e-6 * chain_length(chain);
+        for (size_t i = 0; i < chain.size(); ++i)
+          if (points_[static_cast<size_t>(chain[i])].Distance(points_[static_cast<size_t>(other[i])]) > tol)
+            return fail("seam edge " + std::to_string(ce.id) + ": node " + std::to_string(i) +
+                        " of its two sides is not at the same 3D point");
         for (size_t i = 0; i < chain.size(); ++i) uf.unite(chain[i], other[i]);
       }
       raw_chains_[k] = chain;
     }
     return true;
+  }
+
+  double chain_length(const std::vector<int>& chain) const {
+    double length = 0;
+    for (size_t i = 0; i + 1 < chain.size(); ++i)
+      length += points_[static_cast<size_t>(chain[i])].Distance(points_[static_cast<size_t>(chain[i + 1])]);
+    return length;
   }
 
   // Triangulation nodes at a 3D point (a degenerate edge without a polygon): within a tolerance far

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <mutex>
 
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
 
@@ -37,6 +41,17 @@ bool read_exchange(const std::string& path, const char* what, TopoDS_Shape& shap
   return true;
 }
 
+// OCCT's translators print statistics to stdout through the default messenger, which would mix
+// with the tool's tables. Only failures are kept, on stderr.
+void quiet_occt_messages() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const Handle(Message_Messenger)& messenger = Message::DefaultMessenger();
+    messenger->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+    messenger->AddPrinter(new Message_PrinterOStream("cerr", Standard_False, Message_Fail));
+  });
+}
+
 }  // namespace
 
 bool read_cad_shape(const std::string& path, TopoDS_Shape& shape, std::string& format, std::string& error) {
@@ -45,6 +60,7 @@ bool read_cad_shape(const std::string& path, TopoDS_Shape& shape, std::string& f
     return false;
   }
   const std::string ext = lower_extension(path);
+  quiet_occt_messages();
   try {
     bool ok = false;
     if (ext == ".step" || ext == ".stp") {

@@ -15,8 +15,11 @@
 #include <vector>
 
 #include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
 
 #include "cad_model.hpp"
 #include "cad_wefm.hpp"
@@ -220,6 +223,34 @@ TEST_CASE("sphere poles and a cone apex become single vertices and the topology 
     Face face;
     std::string error;
     REQUIRE_MESSAGE(wefm_cad::set_face_from_cad(face.f, *f, error) == WEFM_OK, error);
+    CHECK_MESSAGE(wefm_face_build(face.f) == WEFM_OK, wefm_face_last_error(face.f));
+  }
+}
+
+TEST_CASE("IGES and BREP cylinders import like the STEP one") {
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(10.0, 25.0).Shape();
+  const auto tmp = std::filesystem::temp_directory_path();
+  const std::string iges = (tmp / "wefm_cylinder.igs").string(), brep = (tmp / "wefm_cylinder.brep").string();
+  IGESControl_Controller::Init();
+  IGESControl_Writer writer("MM", 1);  // BRep mode: faces stay faces
+  writer.AddShape(cylinder);
+  writer.ComputeModel();
+  REQUIRE(writer.Write(iges.c_str()));
+  REQUIRE(BRepTools::Write(cylinder, brep.c_str()));
+  for (const std::string& path : {iges, brep}) {
+    CAPTURE(path);
+    const wefm_cad::CadModel m = load(path);
+    std::filesystem::remove(path);
+    CHECK(m.faces.size() == 3);
+    const CadFace* cyl = face_of_type(m, "cylinder");
+    REQUIRE(cyl);
+    CHECK(cyl->error.empty());
+    int seams = 0;
+    for (const auto& e : cyl->edges) seams += e.seam;
+    CHECK(seams == 1);
+    Face face;
+    std::string error;
+    REQUIRE_MESSAGE(wefm_cad::set_face_from_cad(face.f, *cyl, error) == WEFM_OK, error);
     CHECK_MESSAGE(wefm_face_build(face.f) == WEFM_OK, wefm_face_last_error(face.f));
   }
 }
