@@ -1,0 +1,218 @@
+#include "results_table.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <tuple>
+#include <vector>
+
+namespace wefm_bench {
+
+namespace {
+
+double get(const Json& j, const char* key, double fallback = NAN) {
+  auto it = j.find(key);
+  return it != j.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+std::string fmt(double v, const char* f = "%.3g") {
+  if (!std::isfinite(v)) return "–";
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// Seconds with a precision that reads well from milliseconds to minutes.
+std::string sec(double v) {
+  if (!std::isfinite(v)) return "–";
+  if (v < 0.0995) return fmt(v * 1000, "%.1f ms");
+  if (v < 99.5) return fmt(v, "%.2f");
+  return fmt(v, "%.0f");
+}
+
+std::string key_of(const Json& c) { return c.value("shape", "") + "/" + c.value("size", ""); }
+
+bool ok_case(const Json& c) { return !c.value("timed_out", false) && c.contains("vertices"); }
+
+const Json* find_case(const Json& cases, const char* kind, const std::string& key, double s = NAN) {
+  for (const Json& c : cases)
+    if (c.value("kind", "") == kind && key_of(c) == key && (std::isnan(s) || get(c, "s") == s) && ok_case(c)) return &c;
+  return nullptr;
+}
+
+// Total library time of a wefm case, and the stages that do not overlap (continuation contains
+// assembly, factorisation, solves and quality of its own steps, so it is shown but not summed).
+struct Stages {
+  double mesh_topology, coefficients, assembly, analysis, factorization, solve, quality, other, continuation, total;
+};
+
+Stages stages_of(const Json& c) {
+  Stages s{};
+  const Json& r = c.contains("report") ? c["report"] : Json::object();
+  s.mesh_topology = get(c, "time_set_mesh") + get(c, "time_build");
+  s.coefficients = get(r, "time_coefficients");
+  s.assembly = get(r, "time_assembly");
+  s.analysis = get(r, "time_analysis");
+  s.factorization = get(r, "time_factorization");
+  s.solve = get(r, "time_solve");
+  s.quality = get(r, "time_quality");
+  s.continuation = get(r, "time_continuation");
+  s.total = get(c, "time_library");
+  s.other = get(c, "time_solve_wall") - (s.coefficients + s.assembly + s.analysis + s.factorization + s.solve + s.quality);
+  return s;
+}
+
+std::string row(const std::vector<std::string>& cells) {
+  std::string r = "|";
+  for (const auto& c : cells) r += " " + c + " |";
+  return r + "\n";
+}
+
+}  // namespace
+
+void add_scaling_exponents(Json& results) {
+  Json out = Json::array();
+  const Json& cases = results["cases"];
+  // series -> (triangles, seconds) in the order the sizes were run
+  std::map<std::string, std::vector<std::tuple<double, double, std::string>>> series;
+  for (const Json& c : cases) {
+    if (!ok_case(c)) continue;
+    const std::string kind = c.value("kind", "");
+    double t = NAN;
+    std::string name;
+    if (kind == "wefm" && c.value("status", "") != "WEFM_ERROR_OUT_OF_MEMORY") {
+      t = get(c, "time_library");
+      name = "wefm s=" + fmt(get(c, "s"), "%g") + ", " + c.value("shape", "");
+    } else if (kind == "floor") {
+      t = get(c, "time_floor");
+      name = "floor, " + c.value("shape", "");
+    } else if (kind == "cgal") {
+      t = get(c, "time_parameterize");
+      name = "CGAL LSCM, " + c.value("shape", "");
+    } else {
+      continue;
+    }
+    series[name].emplace_back(get(c, "triangles"), t, c.value("size", ""));
+  }
+  for (auto& [name, pts] : series) {
+    for (size_t k = 0; k + 1 < pts.size(); ++k) {
+      const auto& [n1, t1, l1] = pts[k];
+      const auto& [n2, t2, l2] = pts[k + 1];
+      if (n1 < 50000 || !(n2 > n1) || !(t1 > 0) || !(t2 > 0)) continue;  // 10k is too small to say anything
+      out.push_back({{"series", name}, {"from", l1}, {"to", l2}, {"exponent", std::log(t2 / t1) / std::log(n2 / n1)}});
+    }
+  }
+  results["exponents"] = out;
+}
+
+std::string markdown_tables(const Json& results) {
+  const Json& cases = results["cases"];
+  std::string md;
+  md += "Machine: " + results.value("machine", "?") + "  \n";
+  md += "Date: " + results.value("date", "?") + "; wefm " + results.value("wefm_version", "?") + "; load average " +
+        fmt(get(results, "load_start"), "%.2f") + " at start, " + fmt(get(results, "load_end"), "%.2f") + " at end  \n";
+  md += "Command: `" + results.value("command", "?") + "`\n\n";
+
+  md += "### wefm per stage (seconds)\n\n";
+  md += "`mesh+topo` is `wefm_face_set_mesh` + `wefm_face_build` (validation, half-edges, uses), timed by the benchmark; "
+        "the next six columns are the solve report's timers; `other` is the solve's wall time they do not cover; "
+        "`contin.` is the report's continuation time, which *contains* the assembly, factorisations, solves and quality "
+        "of the continuation steps (not summed). `total` = mesh+topo + solve wall. `×floor` = total / Laplacian floor "
+        "of the same face. `an/fac/sol` are the report's counters.\n\n";
+  md += row({"face", "triangles", "s", "mesh+topo", "coeff.", "assembly", "analysis", "factor.", "solves", "quality", "other",
+             "contin.", "**total**", "×floor", "peak MB", "wefm/CGAL", "an/fac/sol", "status"});
+  md += row({"---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"});
+  for (const Json& c : cases) {
+    if (c.value("kind", "") != "wefm") continue;
+    const std::string key = key_of(c);
+    if (!ok_case(c)) {
+      const std::string why = c.value("timed_out", false) ? "timed out after " + sec(get(c, "wall")) + " s" : "crashed: " + c.value("error", "?");
+      md += row({c.value("shape", ""), c.value("size", ""), fmt(get(c, "s"), "%g"), "", "", "", "", "", "", "", "", "", "–", "", "",
+                 "", "", why});
+      continue;
+    }
+    const Stages s = stages_of(c);
+    const Json* floor = find_case(cases, "floor", key);
+    const Json* cgal = find_case(cases, "cgal", key);
+    const Json& r = c.contains("report") ? c["report"] : Json::object();
+    const double floor_t = floor ? get(*floor, "time_floor") : NAN;
+    const double cgal_t = cgal ? get(*cgal, "time_parameterize") : NAN;
+    std::string status = c.value("status", "?");
+    if (status == "WEFM_OK") status = "ok";
+    else if (status == "WEFM_ERROR_NOT_CONVERGED") status = "not converged (s reached " + fmt(get(r, "s_reached"), "%g") + ")";
+    md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "s"), "%g"), sec(s.mesh_topology), sec(s.coefficients),
+               sec(s.assembly), sec(s.analysis), sec(s.factorization), sec(s.solve), sec(s.quality), sec(s.other), sec(s.continuation),
+               "**" + sec(s.total) + "**", fmt(s.total / floor_t, "%.1f"), fmt(get(c, "peak_rss_mb"), "%.0f"), fmt(s.total / cgal_t, "%.2f"),
+               fmt(get(r, "symbolic_analyses"), "%.0f") + "/" + fmt(get(r, "numeric_factorizations"), "%.0f") + "/" +
+                   fmt(get(r, "solves"), "%.0f"),
+               status});
+  }
+
+  md += "\n### Floor and peer (seconds)\n\n";
+  md += "Floor: CHOLMOD (supernodal, default ordering) on the real cotangent Laplacian with vertex 0 pinned: symbolic "
+        "analysis + numeric factorisation + one solve (assembly not included). `complex` is the same matrix stored as "
+        "complex, what an n×n Hermitian formulation would pay. CGAL: `Surface_mesh_parameterization::LSCM_parameterizer_3` "
+        "(default solver), `parameterize` call only; `build` is converting the arrays to a `Surface_mesh`.\n\n";
+  md += row({"face", "triangles", "ordering", "analysis", "factor.", "solve", "**floor**", "floor peak MB", "complex floor", "CGAL build",
+             "**CGAL LSCM**", "CGAL peak MB", "CGAL / floor"});
+  md += row({"---", "--:", "---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"});
+  std::vector<std::string> keys;
+  for (const Json& c : cases)
+    if (c.value("kind", "") == "floor" && ok_case(c)) keys.push_back(key_of(c));
+  for (const std::string& key : keys) {
+    const Json& f = *find_case(cases, "floor", key);
+    const Json* fc = find_case(cases, "floor_complex", key);
+    const Json* cg = find_case(cases, "cgal", key);
+    const double cgal_t = cg ? get(*cg, "time_parameterize") : NAN;
+    std::string cgal_cell = cg ? "**" + sec(cgal_t) + "**" : "–";
+    if (cg && cg->value("status", "") != "ok") cgal_cell = cg->value("status", "failed");
+    md += row({f.value("shape", ""), fmt(get(f, "triangles"), "%.0f"), f.value("ordering", ""), sec(get(f, "time_analysis")),
+               sec(get(f, "time_factorization")), sec(get(f, "time_solve")), "**" + sec(get(f, "time_floor")) + "**",
+               fmt(get(f, "peak_rss_mb"), "%.0f"), fc ? sec(get(*fc, "time_floor")) : "–", cg ? sec(get(*cg, "time_build")) : "–", cgal_cell,
+               cg ? fmt(get(*cg, "peak_rss_mb"), "%.0f") : "–", fmt(cgal_t / get(f, "time_floor"), "%.1f")});
+  }
+
+  if (results.contains("exponents") && !results["exponents"].empty()) {
+    md += "\n### Scaling exponents\n\n`log(t2/t1) / log(n2/n1)` on the total time, n = triangles.\n\n";
+    md += row({"series", "from", "to", "exponent"});
+    md += row({"---", "---", "---", "--:"});
+    for (const Json& e : results["exponents"])
+      md += row({e.value("series", ""), e.value("from", ""), e.value("to", ""), fmt(get(e, "exponent"), "%.2f")});
+  }
+
+  if (results.contains("cli") && !results["cli"].empty()) {
+    md += "\n### Whole process: `wefm flatten IN.obj -o OUT.obj`\n\n";
+    md += "Wall time and peak memory of the `wefm` process (from `wait4`); read (`wefm_mesh_read`), setup (mesh info, "
+          "face, topology) and solve from its `--report`; `write OBJ` is the rest of the job before the report (the UV OBJ "
+          "writer); `start/exit` is process start, report, freeing and exit.\n\n";
+    md += row({"face", "triangles", "s", "**process**", "read OBJ", "setup", "solve", "write OBJ", "start/exit", "peak MB", "×floor", "×CGAL",
+               "status"});
+    md += row({"---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"});
+    for (const Json& c : results["cli"]) {
+      const std::string key = key_of(c);
+      const Json* floor = find_case(cases, "floor", key);
+      const Json* cg = find_case(cases, "cgal", key);
+      const double wall = get(c, "wall"), job = get(c, "wall_before_report");
+      const double read = get(c, "read_input"), setup = get(c, "setup"), solve = get(c, "wall_solve");
+      md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "s"), "%g"), "**" + sec(wall) + "**", sec(read), sec(setup),
+                 sec(solve), sec(job - read - setup - solve), sec(wall - job), fmt(get(c, "max_rss_mb"), "%.0f"),
+                 floor ? fmt(wall / get(*floor, "time_floor"), "%.1f") : "–", cg ? fmt(wall / get(*cg, "time_parameterize"), "%.2f") : "–",
+                 c.value("status", "")});
+    }
+  }
+
+  bool any_read = false;
+  for (const Json& c : cases) any_read |= c.value("kind", "") == "read" && ok_case(c);
+  if (any_read) {
+    md += "\n### OBJ reading (`wefm_mesh_read`, file in the page cache)\n\n";
+    md += row({"face", "triangles", "file MB", "read", "MB/s"});
+    md += row({"---", "--:", "--:", "--:", "--:"});
+    for (const Json& c : cases)
+      if (c.value("kind", "") == "read" && ok_case(c))
+        md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "file_mb"), "%.1f"), sec(get(c, "time_read")),
+                   fmt(get(c, "file_mb") / get(c, "time_read"), "%.0f")});
+  }
+  return md;
+}
+
+}  // namespace wefm_bench
