@@ -52,6 +52,7 @@ try:
     lines += [f"Commit `{version}` (the working tree may hold uncommitted solver work).", ""]
 except OSError:
     pass
+failure_rows = []
 names = sorted(d for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "index.json")))
 overall = []
 for name in names:
@@ -93,6 +94,9 @@ for name in names:
                          f"{f['flipped_triangles']} | {f['boundary_intersections']} | {reason} |")
             if failures:
                 os.makedirs(failures, exist_ok=True)
+                failure_rows.append(f"| {name} | {f['face']} | {f['surface_type']} | {f['triangles']} | {seams} | {f['status']} | "
+                                    f"{score} | {f['flipped_triangles']} | {f['boundary_intersections']} | {reason} | "
+                                    f"`wefm flatten {name}_{f['name']}.obj --topology {name}_{f['name']}.topo.json -o out.obj` |")
                 for key, ext in (("input_obj", ".obj"), ("input_topology", ".topo.json")):
                     if key in f["files"]:
                         shutil.copy(os.path.join(out, name, f["files"][key]), os.path.join(failures, f"{name}_{f['name']}{ext}"))
@@ -106,6 +110,11 @@ atlases = sorted(p for p in os.listdir(os.path.join(os.path.dirname(results))) i
 for a in atlases:
     lines += [f"Atlas of every domain of one model ({a}; colour = area distortion, black = flipped, green = seams):", "",
               f"![atlas]({a})", ""]
+if failures and failure_rows:
+    with open(os.path.join(failures, "README.md"), "w") as fh:
+        fh.write("# CAD faces that are not clean (from scripts/cad_results.sh)\n\n"
+                 "| model | face | surface | triangles | seams (decision) | status | score | flips | bnd. int. | reason | reproduce |\n"
+                 "|---|---:|---|---:|---|---|---:|---:|---:|---|---|\n" + "\n".join(failure_rows) + "\n")
 section = "<!-- cad-results:begin -->\n" + "\n".join(lines) + "<!-- cad-results:end -->\n"
 text = open(results).read() if os.path.exists(results) else "# Results\n\n"
 b, e = text.find("<!-- cad-results:begin -->"), text.find("<!-- cad-results:end -->")
