@@ -1,0 +1,28 @@
+#pragma once
+// A mesh of the solved domain and its image in 3D (METHOD §9): the entry point of meshing.
+#include <vector>
+
+#include "wefm/core/meshing/boundary.hpp"
+#include "wefm/core/meshing/mesh_options.hpp"
+
+namespace wefm::meshing {
+
+struct DomainMesh {
+  std::vector<P2> uv;
+  std::vector<Vec3> xyz;
+  // Surface normal at each node: free meshes interpolate vertex normals; transfinite meshes use the
+  // grid's own normal (cross product of the two rail directions).
+  std::vector<Vec3> normal;
+  int nodes_per_element = 3;
+  std::vector<Index> elements;  // nodes_per_element per element, counter-clockwise in UV
+  std::vector<std::vector<Index>> rails;  // transfinite grid lines (rows then columns), else empty
+  Index boundary_nodes = 0;                // nodes 0..boundary_nodes-1 lie on the loops
+  MeshReport report;
+};
+
+// Needs a solved face: `uv` holds the UV of every use. Throws Error(invalid_argument) on bad
+// options and Error(unsupported) for transfinite meshing of a face with holes or too few corners.
+DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& options,
+                       const EdgeNodes& given = {});
+
+}  // namespace wefm::meshing

@@ -1,0 +1,11 @@
+#pragma once
+// Free triangular meshing of the domain (METHOD §9.2): constrained Delaunay triangulation of the
+// boundary nodes, Delaunay refinement sized so 3D elements come out near h, then improvement in 3D.
+#include "wefm/core/meshing/domain_mesh.hpp"
+#include "wefm/core/meshing/surface_map.hpp"
+
+namespace wefm::meshing {
+
+void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& options, DomainMesh& out);
+
+}  // namespace wefm::meshing

@@ -1,0 +1,34 @@
+#pragma once
+// What a caller asks of the domain mesher (wefm_mesh_options) and what it reports back
+// (wefm_mesh_report): the same fields, in core types.
+#include <array>
+#include <cstdint>
+
+#include "wefm/core/types.hpp"
+
+namespace wefm::meshing {
+
+enum class MeshType : int { Free = 0, Transfinite = 1 };
+
+struct MeshOptions {
+  MeshType type = MeshType::Free;
+  double size = 0;                        // target 3D element size h
+  std::array<Index, 4> corners{{-1, -1, -1, -1}};  // transfinite corners as uses on the outer loop
+  bool quads = true;
+  int smoothing_iterations = 5;
+  double corner_angle_deg = 30;
+  double min_angle_deg = 28;
+  std::int64_t max_elements = 0;
+};
+
+struct MeshReport {
+  std::int64_t nodes = 0, elements = 0;
+  int nodes_per_element = 3;
+  double lambda_mesh = 0, lambda_min = 0, fraction_below_0_6 = 0;
+  double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
+  double wiggle_max = 0, wiggle_mean = 0;
+  double time_boundary = 0, time_mesh = 0, time_smooth = 0, time_map = 0;
+  std::int64_t outside_nodes = 0;  // nodes whose UV fell outside the solved domain (mapped to the nearest point)
+};
+
+}  // namespace wefm::meshing

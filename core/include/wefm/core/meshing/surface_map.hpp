@@ -1,0 +1,21 @@
+#pragma once
+// The solved domain as a map UV -> surface: 3D point and smooth normal (area-weighted vertex
+// normals interpolated barycentrically) at any UV point.
+#include "wefm/core/meshing/uv_locator.hpp"
+
+namespace wefm::meshing {
+
+class SurfaceMap {
+ public:
+  SurfaceMap(const TriMesh& mesh, const Topology& topo, const VectorXc& uv);
+  // False when p lies outside the domain; xyz is then the nearest domain point's image.
+  bool lift(const P2& p, Vec3& xyz, Vec3* normal = nullptr) const;
+  const UvLocator& locator() const { return loc_; }
+
+ private:
+  const TriMesh& mesh_;
+  UvLocator loc_;
+  std::vector<Vec3> vnormal_;
+};
+
+}  // namespace wefm::meshing

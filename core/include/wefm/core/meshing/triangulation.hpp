@@ -1,0 +1,64 @@
+#pragma once
+// Constrained Delaunay triangulation of a UV domain (METHOD §9.2, free meshing): incremental
+// Bowyer-Watson insertion inside a super-triangle, segments recovered by edge flips (Sloan), the
+// outside and the holes removed by parity across the segments, then Delaunay refinement. All
+// topological decisions go through the robust predicates.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "wefm/core/meshing/predicates.hpp"
+
+namespace wefm::meshing {
+
+class Triangulation {
+ public:
+  // Boundary nodes and the segments joining them (closed loops). Throws Error(internal) if a
+  // segment cannot be recovered (a node lying on another segment: a self-touching domain).
+  Triangulation(const std::vector<P2>& points, const std::vector<std::array<Index, 2>>& segments);
+
+  // Node numbers are the caller's: 0..points.size()-1 the boundary, then inserted nodes. `hint`
+  // is a triangle slot to start the search from (any value works).
+  // Inserts p unless it lies outside, on a segment, or inside the diametral circle of a segment it
+  // can see; then `encroached` (if given) gets that segment's two nodes. Returns the new node or -1.
+  Index insert(const P2& p, Index hint, std::array<Index, 2>* encroached = nullptr);
+
+  // Refinement: `too_big(a, b, c)` (nodes) decides on size; angle below `min_angle_rad` in UV is
+  // bad too. Circumcentres that encroach a segment are replaced by the apex of the equilateral
+  // triangle on it (segments are never split: their nodes are the boundary discretisation).
+  void refine(const std::function<bool(Index, Index, Index)>& too_big, double min_angle_rad, std::int64_t max_nodes,
+              const std::function<void(Index)>& on_insert);
+
+  // Structural check for tests: neighbour links reciprocal, every live triangle positive.
+  bool valid() const;
+
+  Index node_count() const { return static_cast<Index>(pts_.size()) - 3; }
+  const P2& node(Index i) const { return pts_[static_cast<size_t>(i) + 3]; }
+  // Inside triangles as node triples (counter-clockwise), super-triangle nodes excluded.
+  std::vector<std::array<Index, 3>> triangles() const;
+
+ private:
+  struct T {
+    std::array<Index, 3> v{}, n{{-1, -1, -1}};
+    std::array<bool, 3> c{{false, false, false}};
+    bool live = true, inside = true;
+  };
+  Index locate(const P2& p, Index hint, bool stop_at_segments, std::array<Index, 2>* crossed) const;
+  void flip(Index t, int i);
+  void link(Index t, int i, Index s);
+  Index edge_triangle(Index a, Index b, int* i) const;  // triangle with directed edge a->b
+  std::vector<Index> star(Index a) const;               // live triangles around internal node a
+  void recover(Index a, Index b);
+  void mark_inside();
+  Index new_tri(Index a, Index b, Index c);
+
+  std::vector<P2> pts_;  // the super-triangle nodes first (0..2), then the caller's nodes
+  std::vector<T> tris_;
+  std::vector<Index> vtri_;  // a live triangle per node
+  std::vector<Index> free_;
+  Index last_ = 0;
+  std::vector<char> mark_;
+};
+
+}  // namespace wefm::meshing

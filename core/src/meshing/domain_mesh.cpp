@@ -1,0 +1,51 @@
+#include "wefm/core/meshing/domain_mesh.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "wefm/core/error.hpp"
+#include "wefm/core/meshing/free_mesh.hpp"
+#include "wefm/core/meshing/mesh_quality.hpp"
+#include "wefm/core/meshing/transfinite.hpp"
+
+namespace wefm::meshing {
+
+DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o, const EdgeNodes& given) {
+  if (!(o.size > 0) || !std::isfinite(o.size)) fail(Errc::invalid_argument, "mesh size must be a positive number (got " + std::to_string(o.size) + ")");
+  if (o.type != MeshType::Free && o.type != MeshType::Transfinite) fail(Errc::invalid_argument, "unknown mesh type " + std::to_string(static_cast<int>(o.type)));
+  if (!(o.min_angle_deg >= 0 && o.min_angle_deg <= 34)) fail(Errc::invalid_argument, "min_angle_deg must lie in [0, 34] for refinement to terminate (got " + std::to_string(o.min_angle_deg) + ")");
+  if (o.smoothing_iterations < 0) fail(Errc::invalid_argument, "smoothing_iterations must be >= 0");
+  if (o.max_elements < 0) fail(Errc::invalid_argument, "max_elements must be >= 0");
+  if (uv.size() != topo.use_count) fail(Errc::invalid_state, "the face has no solved domain to mesh");
+  // Guard against sizes that would mean billions of elements before doing any work.
+  double area = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) area += triangle_area(mesh, static_cast<Index>(t));
+  const double estimate = 2.5 * area / (0.433 * o.size * o.size);
+  if (estimate > 2e8) fail(Errc::invalid_argument, "mesh size " + std::to_string(o.size) + " would give about " + std::to_string(static_cast<std::int64_t>(estimate)) + " elements");
+
+  DomainMesh out;
+  const SurfaceMap map(mesh, topo, uv);
+  if (o.type == MeshType::Transfinite) {
+    transfinite_mesh(mesh, topo, uv, map, o, out);
+  } else {
+    auto t0 = std::chrono::steady_clock::now();
+    const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given);
+    out.report.time_boundary = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    free_mesh(loops, map, o, out);
+    t0 = std::chrono::steady_clock::now();
+    out.normal.resize(out.uv.size());
+    for (size_t k = 0; k < out.uv.size(); ++k) {
+      Vec3 x;
+      if (!map.lift(out.uv[k], x, &out.normal[k])) out.report.outside_nodes++;
+      if (static_cast<Index>(k) >= out.boundary_nodes) out.xyz[k] = x;
+    }
+    out.report.time_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 3) > o.max_elements)
+      fail(Errc::invalid_argument, "the free mesh needs more than max_elements = " + std::to_string(o.max_elements) + " triangles at size " + std::to_string(o.size));
+  }
+  measure_quality(out);
+  return out;
+}
+
+}  // namespace wefm::meshing

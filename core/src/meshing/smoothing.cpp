@@ -1,0 +1,149 @@
+#include "wefm/core/meshing/smoothing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include "wefm/core/meshing/mesh_quality.hpp"
+
+namespace wefm::meshing {
+namespace {
+
+using Tri3 = std::array<Index, 3>;
+
+double quality(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index a, Index b, Index c) {
+  if (!(orient2d(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], uv[static_cast<size_t>(c)]) > 0)) return -1;
+  return lo_lambda(xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], xyz[static_cast<size_t>(c)]);
+}
+
+std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris) {
+  std::unordered_map<std::uint64_t, std::pair<Index, int>> first;
+  std::vector<char> touched(tris.size(), 0);
+  std::int64_t flips = 0;
+  auto key = [](Index a, Index b) { return (std::uint64_t(std::uint32_t(std::min(a, b))) << 32) | std::uint32_t(std::max(a, b)); };
+  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const Tri3& T = tris[static_cast<size_t>(t)];
+      const std::uint64_t k = key(T[static_cast<size_t>((i + 1) % 3)], T[static_cast<size_t>((i + 2) % 3)]);
+      auto it = first.find(k);
+      if (it == first.end()) {
+        first.emplace(k, std::make_pair(t, i));
+        continue;
+      }
+      const auto [s, j] = it->second;
+      if (touched[static_cast<size_t>(s)] || touched[static_cast<size_t>(t)]) continue;
+      const Tri3 S = tris[static_cast<size_t>(s)];
+      const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)], c = T[static_cast<size_t>((i + 2) % 3)];
+      const Index d = S[static_cast<size_t>(j)];
+      const double old_q = std::min(quality(uv, xyz, a, b, c), quality(uv, xyz, S[0], S[1], S[2]));
+      const double new_q = std::min(quality(uv, xyz, a, b, d), quality(uv, xyz, d, c, a));
+      if (new_q > old_q + 1e-9) {
+        tris[static_cast<size_t>(t)] = {a, b, d};
+        tris[static_cast<size_t>(s)] = {d, c, a};
+        touched[static_cast<size_t>(s)] = touched[static_cast<size_t>(t)] = 1;
+        ++flips;
+      }
+    }
+  return flips;
+}
+
+std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
+  std::vector<std::vector<Index>> around(uv.size());
+  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
+    for (Index v : tris[static_cast<size_t>(t)]) around[static_cast<size_t>(v)].push_back(t);
+  std::int64_t moves = 0;
+  for (Index v = fixed; v < static_cast<Index>(uv.size()); ++v) {
+    const auto& ts = around[static_cast<size_t>(v)];
+    if (ts.empty()) continue;
+    auto worst = [&]() {
+      double q = 1;
+      for (Index t : ts) {
+        const Tri3& T = tris[static_cast<size_t>(t)];
+        q = std::min(q, quality(uv, xyz, T[0], T[1], T[2]));
+      }
+      return q;
+    };
+    auto mean_log = [&]() {
+      double s = 0;
+      for (Index t : ts) {
+        const Tri3& T = tris[static_cast<size_t>(t)];
+        s += std::log(std::max(quality(uv, xyz, T[0], T[1], T[2]), 1e-300));
+      }
+      return s;
+    };
+    // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
+    // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
+    P2 centroid = P2::Zero(), ideal = P2::Zero();
+    int count = 0;
+    for (Index t : ts) {
+      const Tri3& T = tris[static_cast<size_t>(t)];
+      int k = 0;
+      while (T[static_cast<size_t>(k)] != v) ++k;
+      const P2 a = uv[static_cast<size_t>(T[static_cast<size_t>((k + 1) % 3)])], b = uv[static_cast<size_t>(T[static_cast<size_t>((k + 2) % 3)])];
+      const P2 e = b - a;
+      ideal += 0.5 * (a + b) + (std::sqrt(3.0) / 2) * P2(-e.y(), e.x());
+      centroid += a + b;
+      count += 2;
+    }
+    centroid /= count;
+    ideal /= static_cast<double>(ts.size());
+    const double before = worst(), before_mean = mean_log();
+    const P2 p0 = uv[static_cast<size_t>(v)];
+    const Vec3 x0 = xyz[static_cast<size_t>(v)];
+    bool kept = false;
+    for (const P2& target : {ideal, centroid})
+      for (double step : {1.0, 0.5}) {
+        if (kept) break;
+        const P2 p = p0 + step * (target - p0);
+        Vec3 x;
+        if (!map.lift(p, x)) continue;
+        uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
+        const double after = worst();
+        // Better worst element, or as good a worst element and a better geometric mean.
+        if (after > before + 1e-12 || (after >= before - 1e-12 && after > 0 && mean_log() > before_mean + 1e-12)) kept = true;
+      }
+    if (!kept) uv[static_cast<size_t>(v)] = p0, xyz[static_cast<size_t>(v)] = x0;
+    // Nodes of poor elements: compass search on the worst element's quality.
+    double now = worst();
+    if (now < 0.8) {
+      P2 best_p = uv[static_cast<size_t>(v)];
+      Vec3 best_x = xyz[static_cast<size_t>(v)];
+      double step = 0.25 * (centroid - ideal).norm() + 0.1 * (best_p - centroid).norm() + 1e-300;
+      for (const Index t : ts)
+        for (Index w : tris[static_cast<size_t>(t)]) step = std::max(step, 0.15 * (uv[static_cast<size_t>(w)] - best_p).norm());
+      for (int level = 0; level < 6; ++level, step *= 0.5)
+        for (int dir = 0; dir < 8; ++dir) {
+          const P2 p = best_p + step * P2(std::cos(dir * kPi / 4), std::sin(dir * kPi / 4));
+          Vec3 x;
+          if (!map.lift(p, x)) continue;
+          uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
+          const double q = worst();
+          if (q > now + 1e-12) {
+            now = q, best_p = p, best_x = x, kept = true;
+          }
+        }
+      uv[static_cast<size_t>(v)] = best_p, xyz[static_cast<size_t>(v)] = best_x;
+    }
+    if (kept) ++moves;
+  }
+  return moves;
+}
+
+}  // namespace
+
+std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, int iterations, const SurfaceMap& map) {
+  std::int64_t total = 0;
+  for (int it = 0; it < iterations; ++it) {
+    for (int k = 0; k < 8 && flip_pass(uv, xyz, tris) > 0; ++k) {
+    }
+    const std::int64_t m = smooth_pass(uv, xyz, tris, fixed, map);
+    total += m;
+    if (m == 0) break;
+  }
+  for (int k = 0; k < 8 && flip_pass(uv, xyz, tris) > 0; ++k) {
+  }
+  return total;
+}
+
+}  // namespace wefm::meshing

@@ -1,0 +1,28 @@
+#include "wefm/core/meshing/surface_map.hpp"
+
+namespace wefm::meshing {
+
+SurfaceMap::SurfaceMap(const TriMesh& mesh, const Topology& topo, const VectorXc& uv)
+    : mesh_(mesh), loc_(mesh, topo, uv), vnormal_(mesh.vertices.size(), Vec3::Zero()) {
+  for (const Tri& t : mesh.triangles) {
+    const Vec3 n = (mesh.vertices[static_cast<size_t>(t[1])] - mesh.vertices[static_cast<size_t>(t[0])])
+                       .cross(mesh.vertices[static_cast<size_t>(t[2])] - mesh.vertices[static_cast<size_t>(t[0])]);
+    for (Index v : t) vnormal_[static_cast<size_t>(v)] += n;
+  }
+  for (Vec3& n : vnormal_)
+    if (n.norm() > 0) n.normalize();
+}
+
+bool SurfaceMap::lift(const P2& p, Vec3& xyz, Vec3* normal) const {
+  const UvHit hit = loc_.locate(p);
+  xyz = loc_.to_3d(hit);
+  if (normal) {
+    const Tri& t = mesh_.triangles[static_cast<size_t>(hit.tri)];
+    Vec3 n = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) n += hit.bary[k] * vnormal_[static_cast<size_t>(t[static_cast<size_t>(k)])];
+    *normal = n.norm() > 0 ? n.normalized() : n;
+  }
+  return hit.inside;
+}
+
+}  // namespace wefm::meshing

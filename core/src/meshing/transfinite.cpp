@@ -1,0 +1,121 @@
+#include "wefm/core/meshing/transfinite.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "wefm/core/error.hpp"
+
+namespace wefm::meshing {
+
+std::array<size_t, 4> transfinite_corners(const Topology& topo, const VectorXc& uv, const std::array<Index, 4>& given) {
+  if (topo.loop_uses.size() != 1)
+    fail(Errc::unsupported, "transfinite meshing needs a face without holes (this face has " + std::to_string(topo.loop_uses.size()) + " loops)");
+  const auto& lu = topo.loop_uses[static_cast<size_t>(topo.outer_loop)];
+  if (lu.size() < 4) fail(Errc::unsupported, "transfinite meshing needs at least four boundary vertices");
+  std::array<size_t, 4> c{};
+  const bool caller = given[0] >= 0 || given[1] >= 0 || given[2] >= 0 || given[3] >= 0;
+  if (caller) {
+    for (int k = 0; k < 4; ++k) {
+      auto it = std::find(lu.begin(), lu.end(), given[static_cast<size_t>(k)]);
+      if (it == lu.end()) fail(Errc::invalid_argument, "transfinite corner " + std::to_string(k) + " (use " + std::to_string(given[static_cast<size_t>(k)]) + ") is not a use of the outer loop");
+      c[static_cast<size_t>(k)] = static_cast<size_t>(it - lu.begin());
+    }
+  } else {
+    std::vector<std::pair<double, size_t>> turn;
+    for (size_t j = 0; j < lu.size(); ++j) turn.emplace_back(turning_angle(topo, uv, topo.outer_loop, j), j);
+    std::partial_sort(turn.begin(), turn.begin() + 4, turn.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (int k = 0; k < 4; ++k) c[static_cast<size_t>(k)] = turn[static_cast<size_t>(k)].second;
+  }
+  // Loop order from the first corner (the caller's first, or the lowest position).
+  const size_t first = c[0], n = lu.size();
+  std::sort(c.begin(), c.end(), [&](size_t a, size_t b) { return (a + n - first) % n < (b + n - first) % n; });
+  for (int k = 0; k < 3; ++k)
+    if (c[static_cast<size_t>(k)] == c[static_cast<size_t>(k) + 1]) fail(Errc::invalid_argument, "transfinite corners must be four distinct uses");
+  return c;
+}
+
+void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o, DomainMesh& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto c = transfinite_corners(topo, uv, o.corners);
+  const Index loop = topo.outer_loop;
+  double len[4];
+  for (size_t k = 0; k < 4; ++k) len[k] = run_length(mesh, topo, loop, c[k], c[(k + 1) % 4]);
+  const Index n = std::max<Index>(1, static_cast<Index>(std::lround(0.5 * (len[0] + len[2]) / o.size)));
+  const Index m = std::max<Index>(1, static_cast<Index>(std::lround(0.5 * (len[1] + len[3]) / o.size)));
+  if (o.max_elements > 0 && static_cast<std::int64_t>(n) * m * (o.quads ? 1 : 2) > o.max_elements)
+    fail(Errc::invalid_argument, "the transfinite mesh would have " + std::to_string(static_cast<std::int64_t>(n) * m * (o.quads ? 1 : 2)) + " elements, above max_elements = " + std::to_string(o.max_elements));
+  // Sides with both ends, running in +xi (bottom, top) and +eta (left, right).
+  LoopNodes side[4];
+  for (size_t k = 0; k < 4; ++k) {
+    side[k] = discretise_run(mesh, topo, uv, loop, c[k], c[(k + 1) % 4], k % 2 == 0 ? n : m);
+    const LoopNodes end = discretise_run(mesh, topo, uv, loop, c[(k + 1) % 4], c[(k + 2) % 4], 1);
+    side[k].uv.push_back(end.uv[0]), side[k].xyz.push_back(end.xyz[0]), side[k].use.push_back(end.use[0]);
+  }
+  for (size_t k : {size_t(2), size_t(3)}) {
+    std::reverse(side[k].uv.begin(), side[k].uv.end());
+    std::reverse(side[k].xyz.begin(), side[k].xyz.end());
+  }
+  const LoopNodes &B = side[0], &R = side[1], &T = side[2], &L = side[3];
+  auto id = [&](Index i, Index j) { return j * (n + 1) + i; };
+  out.uv.assign(static_cast<size_t>((n + 1) * (m + 1)), P2::Zero());
+  out.xyz.assign(out.uv.size(), Vec3::Zero());
+  std::vector<char> on_side(out.uv.size(), 0);
+  for (Index j = 0; j <= m; ++j)
+    for (Index i = 0; i <= n; ++i) {
+      const double xi = double(i) / n, eta = double(j) / m;
+      const size_t k = static_cast<size_t>(id(i, j)), ii = static_cast<size_t>(i), jj = static_cast<size_t>(j);
+      out.uv[k] = (1 - eta) * B.uv[ii] + eta * T.uv[ii] + (1 - xi) * L.uv[jj] + xi * R.uv[jj] -
+                  ((1 - xi) * (1 - eta) * B.uv[0] + xi * (1 - eta) * B.uv[static_cast<size_t>(n)] + xi * eta * T.uv[static_cast<size_t>(n)] +
+                   (1 - xi) * eta * T.uv[0]);
+      // Boundary nodes keep their exact 3D points (a seam's two sides stay the same points).
+      if (j == 0) out.uv[k] = B.uv[ii], out.xyz[k] = B.xyz[ii], on_side[k] = 1;
+      else if (j == m) out.uv[k] = T.uv[ii], out.xyz[k] = T.xyz[ii], on_side[k] = 1;
+      else if (i == 0) out.uv[k] = L.uv[jj], out.xyz[k] = L.xyz[jj], on_side[k] = 1;
+      else if (i == n) out.uv[k] = R.uv[jj], out.xyz[k] = R.xyz[jj], on_side[k] = 1;
+    }
+  out.report.time_mesh = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto t1 = std::chrono::steady_clock::now();
+  out.normal.resize(out.uv.size());
+  for (size_t k = 0; k < out.uv.size(); ++k) {
+    Vec3 x;
+    if (!map.lift(out.uv[k], x, &out.normal[k])) out.report.outside_nodes++;
+    if (!on_side[k]) out.xyz[k] = x;
+  }
+  out.report.time_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  // The grid's own normal (cross product of its two rail directions) for the wiggle factor: exact
+  // where the grid is, unlike vertex normals near a facetted boundary.
+  auto X = [&](Index i, Index j) { return out.xyz[static_cast<size_t>(id(std::clamp<Index>(i, 0, n), std::clamp<Index>(j, 0, m)))]; };
+  for (Index j = 0; j <= m; ++j)
+    for (Index i = 0; i <= n; ++i) {
+      const Vec3 g = (X(i + 1, j) - X(i - 1, j)).cross(X(i, j + 1) - X(i, j - 1));
+      if (g.norm() > 0) out.normal[static_cast<size_t>(id(i, j))] = g.normalized();
+    }
+  out.boundary_nodes = 0;  // grid numbering: boundary nodes are the grid's rim, not a prefix
+  out.nodes_per_element = o.quads ? 4 : 3;
+  for (Index j = 0; j < m; ++j)
+    for (Index i = 0; i < n; ++i) {
+      const Index a = id(i, j), b = id(i + 1, j), cc = id(i + 1, j + 1), d = id(i, j + 1);
+      if (o.quads) {
+        out.elements.insert(out.elements.end(), {a, b, cc, d});
+      } else if ((out.xyz[static_cast<size_t>(a)] - out.xyz[static_cast<size_t>(cc)]).norm() <=
+                 (out.xyz[static_cast<size_t>(b)] - out.xyz[static_cast<size_t>(d)]).norm()) {
+        out.elements.insert(out.elements.end(), {a, b, cc, a, cc, d});
+      } else {
+        out.elements.insert(out.elements.end(), {a, b, d, b, cc, d});
+      }
+    }
+  for (Index j = 0; j <= m; ++j) {
+    std::vector<Index> row;
+    for (Index i = 0; i <= n; ++i) row.push_back(id(i, j));
+    out.rails.push_back(std::move(row));
+  }
+  for (Index i = 0; i <= n; ++i) {
+    std::vector<Index> col;
+    for (Index j = 0; j <= m; ++j) col.push_back(id(i, j));
+    out.rails.push_back(std::move(col));
+  }
+}
+
+}  // namespace wefm::meshing

@@ -1,0 +1,409 @@
+#include "wefm/core/meshing/triangulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "wefm/core/error.hpp"
+
+// Internally nodes 0..2 are the super-triangle; the caller's node i is internal i + 3.
+namespace wefm::meshing {
+namespace {
+constexpr Index kSuper = 3;
+inline int nx(int i) { return (i + 1) % 3; }
+inline int pv(int i) { return (i + 2) % 3; }
+}  // namespace
+
+Index Triangulation::new_tri(Index a, Index b, Index c) {
+  T t;
+  t.v = {a, b, c};
+  Index id;
+  if (!free_.empty()) {
+    id = free_.back();
+    free_.pop_back();
+    tris_[id] = t;
+  } else {
+    id = static_cast<Index>(tris_.size());
+    tris_.push_back(t);
+  }
+  vtri_[a] = vtri_[b] = vtri_[c] = id;
+  last_ = id;
+  return id;
+}
+
+void Triangulation::link(Index t, int i, Index s) {
+  tris_[t].n[i] = s;
+  if (s < 0) return;
+  const Index a = tris_[t].v[nx(i)], b = tris_[t].v[pv(i)];
+  for (int j = 0; j < 3; ++j)
+    if (tris_[s].v[nx(j)] == b && tris_[s].v[pv(j)] == a) {
+      tris_[s].n[j] = t;
+      tris_[s].c[j] = tris_[t].c[i];
+      return;
+    }
+}
+
+Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<std::array<Index, 2>>& segments) {
+  P2 lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const P2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const P2 c = 0.5 * (lo + hi);
+  const double r = std::max((hi - lo).maxCoeff(), 1e-300);
+  for (int k = 0; k < 3; ++k) {
+    const double a = kPi / 2 + 2 * kPi * k / 3;
+    pts_.push_back(c + 50 * r * P2(std::cos(a), std::sin(a)));
+  }
+  vtri_.assign(3, 0);
+  new_tri(0, 1, 2);
+  for (size_t k = 0; k < points.size(); ++k)
+    if (insert(points[k], last_) < 0)
+      fail(Errc::internal, "boundary node " + std::to_string(k) + " coincides with another node: the domain boundary touches itself");
+  for (const auto& s : segments) recover(s[0] + kSuper, s[1] + kSuper);
+  // Lawson flips restore the constrained Delaunay property after the recovery flips.
+  std::deque<std::pair<Index, int>> q;
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
+    for (int i = 0; i < 3; ++i) q.emplace_back(t, i);
+  while (!q.empty()) {
+    auto [t, i] = q.front();
+    q.pop_front();
+    const T& tt = tris_[t];
+    if (!tt.live || tt.c[i] || tt.n[i] < 0) continue;
+    const Index s = tt.n[i];
+    int j = 0;
+    while (tris_[s].n[j] != t) ++j;
+    const Index d = tris_[s].v[j];
+    if (incircle(pts_[tt.v[0]], pts_[tt.v[1]], pts_[tt.v[2]], pts_[d]) > 0) {
+      flip(t, i);
+      for (int k = 0; k < 3; ++k) q.emplace_back(t, k), q.emplace_back(s, k);
+    }
+  }
+  mark_inside();
+}
+
+Index Triangulation::locate(const P2& p, Index t, bool stop_at_segments, std::array<Index, 2>* crossed) const {
+  if (t < 0 || t >= static_cast<Index>(tris_.size()) || !tris_[t].live) t = last_;
+  const size_t cap = 4 * tris_.size() + 64;
+  for (size_t step = 0; step < cap; ++step) {
+    const T& tt = tris_[t];
+    bool moved = false;
+    for (int k = 0; k < 3 && !moved; ++k) {
+      const int i = static_cast<int>((k + step) % 3);
+      if (orient2d(pts_[tt.v[nx(i)]], pts_[tt.v[pv(i)]], p) < 0) {
+        if (stop_at_segments && tt.c[i]) {
+          if (crossed) *crossed = {tt.v[nx(i)], tt.v[pv(i)]};
+          return -2;
+        }
+        if (tt.n[i] < 0) return -1;
+        t = tt.n[i];
+        moved = true;
+      }
+    }
+    if (!moved) return t;
+  }
+  for (Index s = 0; s < static_cast<Index>(tris_.size()); ++s) {
+    const T& tt = tris_[s];
+    if (!tt.live) continue;
+    if (orient2d(pts_[tt.v[0]], pts_[tt.v[1]], p) >= 0 && orient2d(pts_[tt.v[1]], pts_[tt.v[2]], p) >= 0 &&
+        orient2d(pts_[tt.v[2]], pts_[tt.v[0]], p) >= 0)
+      return s;
+  }
+  return -1;
+}
+
+Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encroached) {
+  std::array<Index, 2> crossed{};
+  const Index t0 = locate(p, hint, encroached != nullptr, &crossed);
+  if (t0 == -2) {
+    *encroached = {crossed[0] - kSuper, crossed[1] - kSuper};
+    return -1;
+  }
+  if (t0 < 0 || !tris_[t0].inside) return -1;
+  // Cavity: triangles whose circumcircle holds p, reached without crossing a segment.
+  std::vector<Index> cav{t0};
+  std::vector<char>& mark = mark_;
+  if (mark.size() < tris_.size()) mark.resize(tris_.size(), 0);
+  mark[t0] = 1;
+  struct Rim {
+    Index a, b, out;
+    bool c;
+  };
+  std::vector<Rim> rim;
+  for (size_t k = 0; k < cav.size(); ++k) {
+    const T& tt = tris_[cav[k]];
+    for (int i = 0; i < 3; ++i) {
+      const Index s = tt.n[i];
+      const Index a = tt.v[nx(i)], b = tt.v[pv(i)];
+      if (s >= 0 && !tt.c[i] && !mark[s]) {
+        const T& ss = tris_[s];
+        if (incircle(pts_[ss.v[0]], pts_[ss.v[1]], pts_[ss.v[2]], p) > 0) {
+          mark[s] = 1;
+          cav.push_back(s);
+          continue;
+        }
+      }
+      if (s >= 0 && !tt.c[i] && mark[s]) continue;
+      rim.push_back({a, b, s, tt.c[i]});
+    }
+  }
+  bool ok = true;
+  for (const Rim& r : rim) {
+    if (!(orient2d(pts_[r.a], pts_[r.b], p) > 0)) ok = false;
+    if (ok && encroached && r.c && r.a >= kSuper && r.b >= kSuper) {
+      const P2 m = 0.5 * (pts_[r.a] + pts_[r.b]);
+      if ((p - m).squaredNorm() < 0.25 * (pts_[r.b] - pts_[r.a]).squaredNorm()) {
+        *encroached = {r.a - kSuper, r.b - kSuper};
+        ok = false;
+      }
+    }
+  }
+  for (Index t : cav) mark[t] = 0;
+  if (!ok) return -1;
+  const bool inside = tris_[t0].inside;
+  for (Index t : cav) {
+    tris_[t].live = false;
+    free_.push_back(t);
+  }
+  const Index v = static_cast<Index>(pts_.size());
+  pts_.push_back(p);
+  vtri_.push_back(-1);
+  std::vector<Index> made(rim.size());
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const Index t = new_tri(rim[k].a, rim[k].b, v);
+    tris_[t].inside = inside;
+    tris_[t].c[2] = rim[k].c;
+    made[k] = t;
+  }
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const Index t = made[k];
+    if (rim[k].out >= 0) link(t, 2, rim[k].out);
+    for (size_t m = 0; m < rim.size(); ++m) {
+      if (rim[m].a == rim[k].b) tris_[t].n[0] = made[m];
+      if (rim[m].b == rim[k].a) tris_[t].n[1] = made[m];
+    }
+  }
+  return v - kSuper;
+}
+
+void Triangulation::flip(Index t, int i) {
+  const Index s = tris_[t].n[i];
+  int j = 0;
+  while (tris_[s].n[j] != t) ++j;
+  const Index a = tris_[t].v[i], b = tris_[t].v[nx(i)], c = tris_[t].v[pv(i)], d = tris_[s].v[j];
+  const Index nab = tris_[t].n[pv(i)], nca = tris_[t].n[nx(i)], ndc = tris_[s].n[pv(j)], nbd = tris_[s].n[nx(j)];
+  const bool cab = tris_[t].c[pv(i)], cca = tris_[t].c[nx(i)], cdc = tris_[s].c[pv(j)], cbd = tris_[s].c[nx(j)];
+  T& x = tris_[t];
+  x.v = {a, b, d};
+  x.c = {cbd, false, cab};
+  T& y = tris_[s];
+  y.v = {d, c, a};
+  y.c = {cca, false, cdc};
+  link(t, 0, nbd);
+  link(t, 2, nab);
+  tris_[t].n[1] = s;
+  link(s, 0, nca);
+  link(s, 2, ndc);
+  tris_[s].n[1] = t;
+  vtri_[a] = vtri_[b] = vtri_[d] = t;
+  vtri_[c] = s;
+}
+
+std::vector<Index> Triangulation::star(Index a) const {
+  std::vector<Index> out{vtri_[a]};
+  for (size_t k = 0; k < out.size(); ++k) {
+    const T& tt = tris_[out[k]];
+    int i = 0;
+    while (tt.v[i] != a) ++i;
+    for (Index s : {tt.n[nx(i)], tt.n[pv(i)]})
+      if (s >= 0 && std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+  }
+  return out;
+}
+
+Index Triangulation::edge_triangle(Index a, Index b, int* i) const {
+  for (Index t : star(a)) {
+    const T& tt = tris_[t];
+    for (int k = 0; k < 3; ++k)
+      if (tt.v[k] == a && tt.v[nx(k)] == b) {
+        *i = pv(k);
+        return t;
+      }
+  }
+  return -1;
+}
+
+void Triangulation::recover(Index a, Index b) {
+  auto constrain = [&]() {
+    int i;
+    bool found = false;
+    for (auto [p, q] : {std::pair{a, b}, std::pair{b, a}}) {
+      const Index t = edge_triangle(p, q, &i);
+      if (t >= 0) {
+        tris_[t].c[i] = true;
+        found = true;
+      }
+    }
+    return found;
+  };
+  if (constrain()) return;
+  auto fail_on = [&](Index w) {
+    fail(Errc::internal, "boundary node " + std::to_string(w - kSuper) + " lies on the boundary segment (" + std::to_string(a - kSuper) + ", " +
+                             std::to_string(b - kSuper) + "): the domain boundary touches itself");
+  };
+  const P2 &pa = pts_[a], &pb = pts_[b];
+  std::deque<std::pair<Index, Index>> q;
+  Index t = -1, v1 = -1, v2 = -1;
+  for (Index s : star(a)) {
+    const T& tt = tris_[s];
+    int k = 0;
+    while (tt.v[k] != a) ++k;
+    const double o1 = orient2d(pa, pb, pts_[tt.v[nx(k)]]), o2 = orient2d(pa, pb, pts_[tt.v[pv(k)]]);
+    if (o1 == 0 && (pts_[tt.v[nx(k)]] - pa).dot(pb - pa) > 0) fail_on(tt.v[nx(k)]);
+    if (o1 < 0 && o2 > 0) {
+      t = s, v1 = tt.v[nx(k)], v2 = tt.v[pv(k)];
+      break;
+    }
+  }
+  if (t < 0) fail(Errc::internal, "boundary segment (" + std::to_string(a - kSuper) + ", " + std::to_string(b - kSuper) + ") could not be recovered");
+  for (;;) {
+    q.emplace_back(v1, v2);
+    int i;
+    const Index cur = edge_triangle(v1, v2, &i);
+    const Index s = tris_[cur].n[i];
+    int j = 0;
+    while (tris_[s].n[j] != cur) ++j;
+    const Index w = tris_[s].v[j];
+    if (w == b) break;
+    const double o = orient2d(pa, pb, pts_[w]);
+    if (o == 0) fail_on(w);
+    if (o < 0)
+      v1 = w;
+    else
+      v2 = w;
+    t = s;
+  }
+  size_t guard = 0;
+  while (!q.empty()) {
+    if (++guard > 100000 + 100 * tris_.size()) fail(Errc::internal, "boundary segment recovery did not terminate");
+    auto [u, w] = q.front();
+    q.pop_front();
+    int i;
+    const Index tt = edge_triangle(u, w, &i);
+    if (tt < 0) continue;
+    const Index s = tris_[tt].n[i];
+    int j = 0;
+    while (tris_[s].n[j] != tt) ++j;
+    const Index x = tris_[tt].v[i], y = tris_[s].v[j];
+    if (orient2d(pts_[x], pts_[u], pts_[y]) > 0 && orient2d(pts_[x], pts_[y], pts_[w]) > 0) {
+      flip(tt, i);
+      if (x != a && x != b && y != a && y != b && orient2d(pa, pb, pts_[x]) * orient2d(pa, pb, pts_[y]) < 0) q.emplace_back(x, y);
+    } else {
+      q.emplace_back(u, w);
+    }
+  }
+  if (!constrain()) fail(Errc::internal, "boundary segment (" + std::to_string(a - kSuper) + ", " + std::to_string(b - kSuper) + ") could not be recovered");
+}
+
+void Triangulation::mark_inside() {
+  std::vector<int> parity(tris_.size(), -1);
+  std::deque<Index> q;
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
+    if (tris_[t].live && (tris_[t].v[0] < kSuper || tris_[t].v[1] < kSuper || tris_[t].v[2] < kSuper)) {
+      parity[t] = 0;
+      q.push_back(t);
+    }
+  while (!q.empty()) {
+    const Index t = q.front();
+    q.pop_front();
+    for (int i = 0; i < 3; ++i) {
+      const Index s = tris_[t].n[i];
+      if (s < 0 || parity[s] >= 0) continue;
+      parity[s] = parity[t] ^ (tris_[t].c[i] ? 1 : 0);
+      q.push_back(s);
+    }
+  }
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t) tris_[t].inside = parity[t] == 1;
+}
+
+bool Triangulation::valid() const {
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t) {
+    const T& tt = tris_[t];
+    if (!tt.live) continue;
+    if (!(orient2d(pts_[tt.v[0]], pts_[tt.v[1]], pts_[tt.v[2]]) > 0)) return false;
+    for (int i = 0; i < 3; ++i) {
+      const Index s = tt.n[i];
+      if (s < 0) continue;
+      const T& ss = tris_[s];
+      if (!ss.live) return false;
+      bool back = false;
+      for (int j = 0; j < 3; ++j)
+        back = back || (ss.n[j] == t && ss.v[nx(j)] == tt.v[pv(i)] && ss.v[pv(j)] == tt.v[nx(i)] && ss.c[j] == tt.c[i]);
+      if (!back) return false;
+      // Constrained Delaunay: no node across an unconstrained edge inside the circumcircle.
+      if (!tt.c[i] && tt.inside && ss.inside) {
+        int j = 0;
+        while (ss.n[j] != t) ++j;
+        if (incircle(pts_[tt.v[0]], pts_[tt.v[1]], pts_[tt.v[2]], pts_[ss.v[j]]) > 0) return false;
+      }
+    }
+  }
+  return true;
+}
+
+std::vector<std::array<Index, 3>> Triangulation::triangles() const {
+  std::vector<std::array<Index, 3>> out;
+  for (const T& t : tris_)
+    if (t.live && t.inside) out.push_back({t.v[0] - kSuper, t.v[1] - kSuper, t.v[2] - kSuper});
+  return out;
+}
+
+void Triangulation::refine(const std::function<bool(Index, Index, Index)>& too_big, double min_angle_rad, std::int64_t max_nodes,
+                           const std::function<void(Index)>& on_insert) {
+  const double sin2 = std::sin(min_angle_rad) * std::sin(min_angle_rad);
+  auto bad = [&](Index t) {
+    const T& tt = tris_[t];
+    if (!tt.live || !tt.inside) return false;
+    const P2 &a = pts_[tt.v[0]], &b = pts_[tt.v[1]], &c = pts_[tt.v[2]];
+    // Smallest angle from the shortest edge: sin^2(min) = (2 area / (l_j l_k))^2 over the two others.
+    const double l[3] = {(b - c).squaredNorm(), (c - a).squaredNorm(), (a - b).squaredNorm()};
+    const int m = static_cast<int>(std::min_element(l, l + 3) - l);
+    const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    if (area2 * area2 < sin2 * l[nx(m)] * l[pv(m)]) return true;
+    return too_big(tt.v[0] - kSuper, tt.v[1] - kSuper, tt.v[2] - kSuper);
+  };
+  std::deque<Index> q;
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t) q.push_back(t);
+  const std::int64_t cap = max_nodes > 0 ? max_nodes : (std::int64_t(1) << 40);
+  while (!q.empty() && node_count() < cap) {
+    const Index t = q.front();
+    q.pop_front();
+    if (!bad(t)) continue;
+    const T& tt = tris_[t];
+    const P2 &a = pts_[tt.v[0]], &b = pts_[tt.v[1]], &c = pts_[tt.v[2]];
+    const P2 ba = b - a, ca = c - a;
+    const double d = 2 * (ba.x() * ca.y() - ba.y() * ca.x());
+    if (!(std::fabs(d) > 0)) continue;
+    const P2 cc = a + P2(ca.y() * ba.squaredNorm() - ba.y() * ca.squaredNorm(), ba.x() * ca.squaredNorm() - ca.x() * ba.squaredNorm()) / d;
+    std::array<Index, 2> enc{{-1, -1}};
+    Index v = insert(cc, t, &enc);
+    if (v < 0 && enc[0] >= 0) {
+      // The apex of the equilateral triangle standing on the encroached segment, inside.
+      int i;
+      Index s = edge_triangle(enc[0] + kSuper, enc[1] + kSuper, &i);
+      P2 p0 = pts_[enc[0] + kSuper], p1 = pts_[enc[1] + kSuper];
+      if (s < 0 || !tris_[s].inside) std::swap(p0, p1);
+      const P2 e = p1 - p0;
+      const P2 apex = 0.5 * (p0 + p1) + (std::sqrt(3.0) / 2) * P2(-e.y(), e.x());
+      std::array<Index, 2> enc2{{-1, -1}};
+      v = insert(apex, t, &enc2);
+    }
+    if (v < 0) continue;
+
+    on_insert(v);
+    for (Index s : star(v + kSuper)) q.push_back(s);
+    if (tris_[t].live) q.push_back(t);
+  }
+}
+
+}  // namespace wefm::meshing

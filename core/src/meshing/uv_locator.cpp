@@ -1,0 +1,141 @@
+#include "wefm/core/meshing/uv_locator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace wefm::meshing {
+namespace {
+
+// Barycentric coordinates of p in (a, b, c); false for a degenerate triangle.
+bool barycentric(const P2& p, const P2& a, const P2& b, const P2& c, double w[3]) {
+  const double d = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+  if (!(std::fabs(d) > 0)) return false;
+  w[1] = ((p.x() - a.x()) * (c.y() - a.y()) - (p.y() - a.y()) * (c.x() - a.x())) / d;
+  w[2] = ((b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x())) / d;
+  w[0] = 1.0 - w[1] - w[2];
+  return true;
+}
+
+// Squared distance from p to segment ab and the parameter of the closest point.
+double segment_distance2(const P2& p, const P2& a, const P2& b, double& t) {
+  const P2 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).squaredNorm();
+}
+
+}  // namespace
+
+UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& uv) : mesh_(mesh) {
+  const size_t nt = mesh.triangles.size();
+  uv_.resize(3 * nt);
+  scale_.resize(nt);
+  P2 hi(-1e300, -1e300);
+  lo_ = P2(1e300, 1e300);
+  for (size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Complex z = uv[topo.corner_use[3 * t + static_cast<size_t>(k)]];
+      uv_[3 * t + static_cast<size_t>(k)] = P2(z.real(), z.imag());
+      lo_ = lo_.cwiseMin(uv_[3 * t + static_cast<size_t>(k)]);
+      hi = hi.cwiseMax(uv_[3 * t + static_cast<size_t>(k)]);
+    }
+    const Tri& tr = mesh.triangles[t];
+    const double a3 = 0.5 * (mesh.vertices[static_cast<size_t>(tr[1])] - mesh.vertices[static_cast<size_t>(tr[0])])
+                                .cross(mesh.vertices[static_cast<size_t>(tr[2])] - mesh.vertices[static_cast<size_t>(tr[0])]).norm();
+    const P2 e1 = uv_[3 * t + 1] - uv_[3 * t], e2 = uv_[3 * t + 2] - uv_[3 * t];
+    const double a2 = 0.5 * std::fabs(e1.x() * e2.y() - e1.y() * e2.x());
+    scale_[t] = a2 > 0 ? std::sqrt(a3 / a2) : 0.0;
+  }
+  const P2 ext = (hi - lo_).cwiseMax(P2(1e-300, 1e-300));
+  const double cells = std::max<double>(1.0, static_cast<double>(nt));
+  const double c = std::sqrt(ext.x() * ext.y() / cells);
+  nx_ = std::clamp(static_cast<int>(ext.x() / std::max(c, 1e-300)) + 1, 1, 4096);
+  ny_ = std::clamp(static_cast<int>(ext.y() / std::max(c, 1e-300)) + 1, 1, 4096);
+  cell_ = P2(ext.x() / nx_, ext.y() / ny_);
+  std::vector<Index> count(static_cast<size_t>(nx_ * ny_) + 1, 0);
+  auto range = [&](size_t t, int& i0, int& i1, int& j0, int& j1) {
+    P2 a = uv_[3 * t].cwiseMin(uv_[3 * t + 1]).cwiseMin(uv_[3 * t + 2]);
+    P2 b = uv_[3 * t].cwiseMax(uv_[3 * t + 1]).cwiseMax(uv_[3 * t + 2]);
+    i0 = std::clamp(static_cast<int>((a.x() - lo_.x()) / cell_.x()), 0, nx_ - 1);
+    i1 = std::clamp(static_cast<int>((b.x() - lo_.x()) / cell_.x()), 0, nx_ - 1);
+    j0 = std::clamp(static_cast<int>((a.y() - lo_.y()) / cell_.y()), 0, ny_ - 1);
+    j1 = std::clamp(static_cast<int>((b.y() - lo_.y()) / cell_.y()), 0, ny_ - 1);
+  };
+  for (size_t t = 0; t < nt; ++t) {
+    int i0, i1, j0, j1;
+    range(t, i0, i1, j0, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) count[static_cast<size_t>(j * nx_ + i) + 1]++;
+  }
+  for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+  start_ = count;
+  items_.resize(static_cast<size_t>(count.back()));
+  for (size_t t = 0; t < nt; ++t) {
+    int i0, i1, j0, j1;
+    range(t, i0, i1, j0, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) items_[static_cast<size_t>(count[static_cast<size_t>(j * nx_ + i)]++)] = static_cast<Index>(t);
+  }
+}
+
+UvHit UvLocator::locate(const P2& p) const {
+  UvHit hit;
+  const int ci = std::clamp(static_cast<int>(std::floor((p.x() - lo_.x()) / cell_.x())), 0, nx_ - 1);
+  const int cj = std::clamp(static_cast<int>(std::floor((p.y() - lo_.y()) / cell_.y())), 0, ny_ - 1);
+  // Inside: the triangle whose smallest barycentric coordinate is largest, so a point on a shared
+  // edge picks one triangle deterministically and round-off never leaves it outside.
+  double best_min = -1e-12;
+  for (Index k = start_[static_cast<size_t>(cj * nx_ + ci)]; k < start_[static_cast<size_t>(cj * nx_ + ci) + 1]; ++k) {
+    const Index t = items_[static_cast<size_t>(k)];
+    double w[3];
+    if (!barycentric(p, corner(t, 0), corner(t, 1), corner(t, 2), w)) continue;
+    const double m = std::min({w[0], w[1], w[2]});
+    if (m >= best_min) {
+      best_min = m;
+      hit.tri = t;
+      std::copy(w, w + 3, hit.bary);
+      hit.inside = true;
+      if (m > 0) break;
+    }
+  }
+  if (hit.inside) return hit;
+  // Outside: nearest point of the domain, searching growing rings of cells.
+  double best = std::numeric_limits<double>::infinity();
+  const int rmax = std::max(nx_, ny_);
+  for (int r = 0; r <= rmax; ++r) {
+    for (int j = cj - r; j <= cj + r; ++j)
+      for (int i = ci - r; i <= ci + r; ++i) {
+        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+        if (std::max(std::abs(i - ci), std::abs(j - cj)) != r) continue;
+        for (Index k = start_[static_cast<size_t>(j * nx_ + i)]; k < start_[static_cast<size_t>(j * nx_ + i) + 1]; ++k) {
+          const Index t = items_[static_cast<size_t>(k)];
+          for (int e = 0; e < 3; ++e) {
+            double s;
+            const double d2 = segment_distance2(p, corner(t, e), corner(t, (e + 1) % 3), s);
+            if (d2 < best) {
+              best = d2;
+              hit.tri = t;
+              hit.bary[e] = 1 - s;
+              hit.bary[(e + 1) % 3] = s;
+              hit.bary[(e + 2) % 3] = 0;
+            }
+          }
+        }
+      }
+    // Everything beyond ring r lies at least (distance to the searched block's edge) away.
+    const double bx0 = lo_.x() + (ci - r) * cell_.x(), bx1 = lo_.x() + (ci + r + 1) * cell_.x();
+    const double by0 = lo_.y() + (cj - r) * cell_.y(), by1 = lo_.y() + (cj + r + 1) * cell_.y();
+    const double margin = std::min({p.x() - bx0, bx1 - p.x(), p.y() - by0, by1 - p.y()});
+    if (hit.tri >= 0 && std::sqrt(best) <= margin) break;
+  }
+  return hit;
+}
+
+Vec3 UvLocator::to_3d(const UvHit& hit) const {
+  const Tri& t = mesh_.triangles[static_cast<size_t>(hit.tri)];
+  return hit.bary[0] * mesh_.vertices[static_cast<size_t>(t[0])] + hit.bary[1] * mesh_.vertices[static_cast<size_t>(t[1])] +
+         hit.bary[2] * mesh_.vertices[static_cast<size_t>(t[2])];
+}
+
+}  // namespace wefm::meshing

@@ -1,0 +1,103 @@
+// Free meshing (METHOD §9): constrained Delaunay + refinement + improvement judged in 3D.
+#include <map>
+
+#include "mesh_faces.hpp"
+
+using namespace wefm;
+
+namespace {
+
+// Mean 3D edge length of a triangle mesh.
+double mean_edge(const meshing::DomainMesh& dm) {
+  double s = 0;
+  for (size_t e = 0; e < dm.elements.size(); e += 3)
+    for (size_t k = 0; k < 3; ++k) s += (dm.xyz[static_cast<size_t>(dm.elements[e + k])] - dm.xyz[static_cast<size_t>(dm.elements[e + (k + 1) % 3])]).norm();
+  return s / static_cast<double>(dm.elements.size());
+}
+
+}  // namespace
+
+TEST_CASE("free meshing of a flat disk with holes gives min lambda >= 0.6 and keeps the holes") {
+  const auto f = test::solved(test::disk_with_holes());
+  meshing::MeshOptions o;
+  o.size = 0.06;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("disk with holes: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  CHECK(dm.report.lambda_min >= 0.6);
+  CHECK(dm.report.lambda_mesh >= 0.9);
+  CHECK(dm.report.outside_nodes == 0);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+  CHECK(mean_edge(dm) == doctest::Approx(o.size).epsilon(0.25));
+  // Area of the mesh equals the face's: the holes stay empty and nothing outside is meshed.
+  double a3 = 0, am = 0;
+  for (size_t t = 0; t < f.mesh().triangles.size(); ++t) a3 += triangle_area(f.mesh(), static_cast<Index>(t));
+  for (size_t e = 0; e < dm.elements.size(); e += 3)
+    am += 0.5 * (dm.xyz[static_cast<size_t>(dm.elements[e + 1])] - dm.xyz[static_cast<size_t>(dm.elements[e])])
+                    .cross(dm.xyz[static_cast<size_t>(dm.elements[e + 2])] - dm.xyz[static_cast<size_t>(dm.elements[e])]).norm();
+  CHECK(am == doctest::Approx(a3).epsilon(1e-9));
+}
+
+TEST_CASE("free meshing of a curved face puts every node on the 3D triangulation at size near h") {
+  const auto f = test::solved(test::saddle(24), 1.0);
+  meshing::MeshOptions o;
+  o.size = 0.08;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("saddle: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+  CHECK(dm.report.lambda_mesh >= 0.9);
+  CHECK(dm.report.lambda_min >= 0.5);
+  CHECK(mean_edge(dm) == doctest::Approx(o.size).epsilon(0.25));
+}
+
+TEST_CASE("free meshing of a cylinder with a periodic seam: node counts match across the seam") {
+  std::vector<std::pair<Index, Index>> seam;
+  const TriMesh m = test::open_cylinder(32, 8, &seam);
+  const auto f = test::solved(m, 0.0, seam, EdgeMode::Periodic);
+  meshing::MeshOptions o;
+  o.size = 0.17;
+  const auto dm = f.mesh_domain(o);
+  CHECK(dm.report.lambda_min >= 0.6);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+  // Seam nodes (angle 0) come from both sides: each 3D point exactly twice, at distinct UV.
+  std::map<long, std::vector<Index>> by_height;
+  for (Index k = 0; k < static_cast<Index>(dm.xyz.size()); ++k) {
+    const Vec3& x = dm.xyz[static_cast<size_t>(k)];
+    if (std::fabs(x.y()) < 1e-12 && x.x() > 0) by_height[std::lround(x.z() * 1e9)].push_back(k);
+  }
+  CHECK(by_height.size() >= 10);
+  for (const auto& [z, ks] : by_height) {
+    CAPTURE(z);
+    REQUIRE(ks.size() == 2);
+    CHECK((dm.uv[static_cast<size_t>(ks[0])] - dm.uv[static_cast<size_t>(ks[1])]).norm() > 1.0);
+  }
+}
+
+TEST_CASE("caller-given edge nodes become the boundary nodes") {
+  const auto f = test::solved(test::unit_square(4));
+  const Topology& tp = f.topo();
+  REQUIRE(tp.edges.size() == 1);
+  // The square's only edge: give nodes on its first side (y = 0) at uneven spacing.
+  meshing::EdgeNodes given;
+  given[0] = {Vec3(0.1, 0, 0), Vec3(0.15, 0, 0), Vec3(0.6, 0, 0), Vec3(1, 0.5, 0), Vec3(0.3, 1, 0), Vec3(0, 0.5, 0)};
+  meshing::MeshOptions o;
+  o.size = 0.2;
+  const auto dm = f.mesh_domain(o, given);
+  int found = 0;
+  for (const Vec3& g : given[0])
+    for (const Vec3& x : dm.xyz) found += (x - g).norm() < 1e-12 ? 1 : 0;
+  CHECK(found == 6);
+  CHECK(dm.boundary_nodes == 6 + 4);  // the given nodes and the edge's end and corner vertices
+}
+
+TEST_CASE("mesh options are checked") {
+  const auto f = test::solved(test::unit_square(4));
+  meshing::MeshOptions o;
+  o.size = 0;
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+  o.size = 0.1;
+  o.min_angle_deg = 50;
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+  o.min_angle_deg = 28;
+  o.max_elements = 10;
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+}

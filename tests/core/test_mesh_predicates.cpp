@@ -1,0 +1,111 @@
+// Robust predicates and the triangulation on near-degenerate input: signs checked against exact
+// integer arithmetic (coordinates are integers, so __int128 evaluates the determinants exactly).
+#include <cmath>
+#include <random>
+
+#include "mesh_faces.hpp"
+#include "wefm/core/meshing/predicates.hpp"
+#include "wefm/core/meshing/triangulation.hpp"
+
+using namespace wefm;
+using meshing::P2;
+
+namespace {
+
+int sign128(__int128 v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+int sign(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+
+int exact_orient(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t cx, std::int64_t cy) {
+  return sign128(__int128(ax - cx) * (by - cy) - __int128(ay - cy) * (bx - cx));
+}
+
+int exact_incircle(const std::int64_t p[4][2]) {
+  __int128 m[3][3];
+  for (int i = 0; i < 3; ++i) {
+    const __int128 dx = p[i][0] - p[3][0], dy = p[i][1] - p[3][1];
+    m[i][0] = dx, m[i][1] = dy, m[i][2] = dx * dx + dy * dy;
+  }
+  return sign128(m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]) + m[1][2] * (m[2][0] * m[0][1] - m[2][1] * m[0][0]) +
+                 m[2][2] * (m[0][0] * m[1][1] - m[0][1] * m[1][0]));
+}
+
+}  // namespace
+
+TEST_CASE("orient2d has the exact sign on near-collinear points") {
+  // Shewchuk's example: a point a few ulps off the line through (12, 12) and (24, 24). Scaled by
+  // 2^53 every coordinate is an integer, so __int128 gives the exact sign.
+  const double u = std::ldexp(1.0, -53);
+  const std::int64_t S = std::int64_t(1) << 53;
+  int wrong_naive = 0;
+  for (int i = 0; i < 64; ++i)
+    for (int j = 0; j < 64; ++j) {
+      const P2 a(0.5 + i * u, 0.5 + j * u), b(12, 12), c(24, 24);
+      const int e = exact_orient(S / 2 + i, S / 2 + j, 12 * S, 12 * S, 24 * S, 24 * S);
+      CHECK(sign(meshing::orient2d(a, b, c)) == e);
+      CHECK(sign(meshing::orient2d(b, c, a)) == e);
+      CHECK(sign(meshing::orient2d(b, a, c)) == -e);
+      const double naive = (a.x() - c.x()) * (b.y() - c.y()) - (a.y() - c.y()) * (b.x() - c.x());
+      wrong_naive += sign(naive) != e;
+    }
+  MESSAGE("plain floating point got ", wrong_naive, " of 4096 signs wrong");
+  CHECK(wrong_naive > 0);  // the input really is beyond plain floating point
+}
+
+TEST_CASE("incircle has the exact sign on near-cocircular points") {
+  // Four exactly cocircular integer points (a 3-4-5 circle), translated, the fourth moved by at
+  // most two units: determinants far below the rounding of the naive formula.
+  std::mt19937_64 rng(11);
+  const std::int64_t m = (std::int64_t(1) << 24) / 5;
+  int wrong_naive = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const std::int64_t tx = static_cast<std::int64_t>(rng() % (1u << 26)), ty = static_cast<std::int64_t>(rng() % (1u << 26));
+    const std::int64_t dx = static_cast<std::int64_t>(rng() % 5) - 2, dy = static_cast<std::int64_t>(rng() % 5) - 2;
+    const std::int64_t p[4][2] = {{3 * m + tx, 4 * m + ty}, {-5 * m + tx, ty}, {4 * m + tx, -3 * m + ty}, {tx + dx, 5 * m + ty + dy}};
+    P2 q[4];
+    for (int i = 0; i < 4; ++i) q[i] = P2(static_cast<double>(p[i][0]), static_cast<double>(p[i][1]));
+    const int e = exact_incircle(p);  // (3,4), (-5,0), (4,-3) run counter-clockwise
+    CHECK(sign(meshing::incircle(q[0], q[1], q[2], q[3])) == e);
+    CHECK(sign(meshing::incircle(q[1], q[2], q[0], q[3])) == e);
+    const double adx = q[0].x() - q[3].x(), ady = q[0].y() - q[3].y(), bdx = q[1].x() - q[3].x(), bdy = q[1].y() - q[3].y(),
+                 cdx = q[2].x() - q[3].x(), cdy = q[2].y() - q[3].y();
+    const double naive = (adx * adx + ady * ady) * (bdx * cdy - bdy * cdx) + (bdx * bdx + bdy * bdy) * (cdx * ady - cdy * adx) +
+                         (cdx * cdx + cdy * cdy) * (adx * bdy - ady * bdx);
+    wrong_naive += sign(naive) != e;
+  }
+  MESSAGE("plain floating point got ", wrong_naive, " of 4000 incircle signs wrong");
+}
+
+TEST_CASE("the triangulation stays valid on collinear and nearly collinear boundary nodes") {
+  // A long thin rectangle whose long sides carry many exactly collinear nodes, plus a side whose
+  // nodes deviate from the line by one unit in the last place.
+  std::vector<P2> pts;
+  const int n = 200;
+  for (int k = 0; k < n; ++k) pts.emplace_back(0.1 + 0.7 * k / n, k % 2 ? std::nextafter(0.1, 1.0) : 0.1);
+  pts.emplace_back(0.8, 0.1);
+  pts.emplace_back(0.8, 0.1 + 1e-3);
+  for (int k = n; k > 0; --k) pts.emplace_back(0.1 + 0.7 * k / n - 0.7 / n, 0.1 + 1e-3);
+  std::vector<std::array<Index, 2>> segs;
+  for (Index k = 0; k < static_cast<Index>(pts.size()); ++k) segs.push_back({k, (k + 1) % static_cast<Index>(pts.size())});
+  meshing::Triangulation tr(pts, segs);
+  CHECK(tr.valid());
+  double area = 0;
+  for (const auto& t : tr.triangles()) {
+    const P2 a = tr.node(t[0]), b = tr.node(t[1]), c = tr.node(t[2]);
+    CHECK(meshing::orient2d(a, b, c) > 0);
+    area += 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+  }
+  CHECK(area == doctest::Approx(0.7 * 1e-3).epsilon(1e-6));
+  CHECK(tr.triangles().size() == pts.size() - 2);
+}
+
+TEST_CASE("refinement keeps the triangulation constrained Delaunay and meets the angle bound") {
+  std::vector<P2> pts;
+  std::vector<std::array<Index, 2>> segs;
+  for (int k = 0; k < 40; ++k) pts.emplace_back(std::cos(2 * kPi * k / 40), 0.5 * std::sin(2 * kPi * k / 40));
+  for (Index k = 0; k < 40; ++k) segs.push_back({k, (k + 1) % 40});
+  meshing::Triangulation tr(pts, segs);
+  tr.refine([&](Index a, Index b, Index c) { return std::max({(tr.node(a) - tr.node(b)).norm(), (tr.node(b) - tr.node(c)).norm(), (tr.node(c) - tr.node(a)).norm()}) > 0.1; },
+            25 * kPi / 180, 0, [](Index) {});
+  CHECK(tr.valid());
+  CHECK(tr.node_count() > 100);
+}

@@ -1,0 +1,78 @@
+// Transfinite meshing (METHOD §9): exact on developable four-sided domains.
+#include "mesh_faces.hpp"
+#include "wefm/core/meshing/mesh_quality.hpp"
+
+using namespace wefm;
+
+TEST_CASE("a flat square meshed transfinite gives wiggle 0 and scaled Jacobians 1") {
+  const auto f = test::solved(test::unit_square(8));
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Transfinite;
+  o.size = 0.1;
+  const auto dm = f.mesh_domain(o);
+  CHECK(dm.nodes_per_element == 4);
+  CHECK(dm.report.elements == 100);
+  CHECK(dm.report.wiggle_max < 1e-20);
+  CHECK(dm.report.scaled_jacobian_min == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(dm.report.lambda_min == doctest::Approx(std::sqrt(3.0) / 2).epsilon(1e-9));  // right isosceles halves
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+  CHECK(dm.report.outside_nodes == 0);
+}
+
+TEST_CASE("a cut cylinder with a periodic seam meshed transfinite gives wiggle below 1e-6") {
+  std::vector<std::pair<Index, Index>> seam;
+  const TriMesh m = test::open_cylinder(24, 8, &seam);
+  const auto f = test::solved(m, 0.0, seam, EdgeMode::Periodic);
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Transfinite;
+  o.size = 2 * std::sin(kPi / 24);  // one node per facet column: the nodes fall on the facet vertices
+  const auto dm = f.mesh_domain(o);
+  CHECK(dm.report.elements == 24 * 8);
+  CHECK(dm.report.wiggle_max < 1e-6);
+  CHECK(dm.report.scaled_jacobian_min > 0.999);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+  // The seam's two sides are opposite rails of the grid (which pair depends on the first corner):
+  // node by node the same 3D points.
+  const auto& r = dm.rails;
+  const size_t rows = r.back().size();  // rows first (one per column node), then columns
+  auto same = [&](const std::vector<Index>& a, const std::vector<Index>& b) {
+    double d = 0;
+    for (size_t k = 0; k < a.size(); ++k) d = std::max(d, (dm.xyz[static_cast<size_t>(a[k])] - dm.xyz[static_cast<size_t>(b[k])]).norm());
+    return d;
+  };
+  CHECK(std::min(same(r[0], r[rows - 1]), same(r[rows], r.back())) < 1e-12);
+}
+
+TEST_CASE("transfinite meshing splits quads into triangles on request and honours given corners") {
+  const auto f = test::solved(test::unit_square(6));
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Transfinite;
+  o.size = 0.25;
+  o.quads = false;
+  const auto dm = f.mesh_domain(o);
+  CHECK(dm.nodes_per_element == 3);
+  CHECK(dm.report.elements == 32);
+  const auto& lu = f.topo().loop_uses[0];
+  o.corners = {lu[0], lu[1], lu[2], lu[3]};  // not a quadrilateral: all but one corner in a row
+  CHECK_NOTHROW(f.mesh_domain(o));
+  o.corners = {lu[0], lu[0], lu[2], lu[3]};
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+}
+
+TEST_CASE("transfinite meshing refuses a face with holes") {
+  const auto f = test::solved(test::disk_with_holes());
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Transfinite;
+  o.size = 0.1;
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+}
+
+TEST_CASE("the wiggle factor sees waviness in the surface and ignores bending with it") {
+  std::vector<Vec3> x, n(9, Vec3(0, 0, 1)), bent;
+  for (int j = 0; j <= 8; ++j) {
+    x.emplace_back(j, 0.1 * (j % 2), 0);
+    bent.emplace_back(j, 0, 0.1 * (j % 2));
+  }
+  CHECK(meshing::wiggle(x, n) == doctest::Approx(0.04 * 7 / 8 / std::pow((8 * std::sqrt(1.01)) / 8, 2)).epsilon(1e-9));
+  CHECK(meshing::wiggle(bent, n) == doctest::Approx(0.0));
+}
