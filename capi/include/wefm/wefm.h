@@ -1,9 +1,15 @@
-/*
- * wefm.h: the stable C API of wefm, the Weighted Edge Flattening Method library.
+/**
+ * @file wefm.h
+ * @brief The stable C API of wefm, the Weighted Edge Flattening Method library.
  *
  * wefm flattens a 3D triangulated surface (a "facetted face") into a low-distortion 2D domain,
- * meshes that domain and maps the mesh back to 3D.
+ * meshes that domain and maps the mesh back to 3D. Link libwefm (CMake: find_package(wefm),
+ * target wefm::wefm; pkg-config: wefm). The API reference is built from this file (docs/Doxyfile).
  *
+ * The function comments below name only the errors particular to each function; the ones every
+ * function shares (NULL arguments, buffer sizes, exhausted memory) are in the conventions.
+ *
+ * @verbatim
  * ---------------------------------------------------------------------------------------------
  * Conventions (followed by every function in this header)
  * ---------------------------------------------------------------------------------------------
@@ -32,8 +38,9 @@
  *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
  *              The library starts no threads of its own unless wefm_options.threads > 1.
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
- * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology or
- *              constraints clears results. A failed or cancelled solve keeps the previous result.
+ * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
+ *              clears constraints (use ids change with it) and results. Changing constraints or
+ *              edge modes clears results. Options apply to the next solve: the result stays. A failed or cancelled solve keeps the previous result.
  *
  * ABI.         Structs that may grow (wefm_options, wefm_report, wefm_mesh_options,
  *              wefm_mesh_report, wefm_mesh_info) start with `struct_size`. Their *_init function
@@ -55,7 +62,9 @@
  *              init-functions-plus-struct_size over per-option setters because FFI users map a
  *              plain struct directly and get all defaults at once.
  *              Only functions in the stable section keep their ABI across minor versions; the
- *              experimental section (WEFM_EXPERIMENTAL) may change in any release.
+ *              experimental section (WEFM_EXPERIMENTAL) may change in any release. The exported
+ *              symbols and the ABI are pinned by capi/abi/ and checked by ctest.
+ * @endverbatim
  */
 #ifndef WEFM_WEFM_H
 #define WEFM_WEFM_H
@@ -63,11 +72,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/** Version of this header; compare with wefm_version() / wefm_version_number() at run time. The
+ *  SONAME is libwefm.so.WEFM_VERSION_MAJOR. */
 #define WEFM_VERSION_MAJOR 0
-#define WEFM_VERSION_MINOR 1
-#define WEFM_VERSION_PATCH 0
+#define WEFM_VERSION_MINOR 1 /**< see WEFM_VERSION_MAJOR */
+#define WEFM_VERSION_PATCH 0 /**< see WEFM_VERSION_MAJOR */
+/** MAJOR * 10000 + MINOR * 100 + PATCH. */
 #define WEFM_VERSION_NUMBER (WEFM_VERSION_MAJOR * 10000 + WEFM_VERSION_MINOR * 100 + WEFM_VERSION_PATCH)
 
+/** Marks the exported functions (default visibility; the library is built with hidden visibility). */
 #if defined(_WIN32)
 #  if defined(WEFM_BUILDING_LIBRARY)
 #    define WEFM_API __declspec(dllexport)
@@ -88,6 +101,7 @@ extern "C" {
 /* Status codes                                                                                  */
 /* ============================================================================================= */
 
+/** What every fallible function returns; WEFM_OK is 0. Names: wefm_status_string(). */
 typedef enum wefm_status {
   WEFM_OK = 0,
   WEFM_ERROR_NULL_ARGUMENT = 1,       /**< a required handle or pointer was NULL */
@@ -109,32 +123,45 @@ typedef enum wefm_status {
   WEFM_ERROR_INTERNAL = 99            /**< a bug: please report it with the message */
 } wefm_status;
 
-/** Name of a status code ("WEFM_OK", ...). Never NULL; unknown codes give "WEFM_ERROR_UNKNOWN". */
+/**
+ * Name of a status code.
+ * @param status  any value, also ones not in wefm_status.
+ * @return "WEFM_OK", "WEFM_ERROR_NULL_ARGUMENT", ...: a static string, never NULL; unknown codes give
+ *         "WEFM_ERROR_UNKNOWN". Never fails.
+ */
 WEFM_API const char* wefm_status_string(wefm_status status);
 
-/** Thread-local message of the last failure that had no handle to carry it ("" if none). */
+/**
+ * Message of the last failure on this thread that had no handle to carry it: creation, NULL handles,
+ * file reading, *_init, wefm_mesh_* calls.
+ * @return "" if none. Owned by the library, valid until the next failing call on this thread.
+ */
 WEFM_API const char* wefm_last_error(void);
 
 /* ============================================================================================= */
 /* Version                                                                                       */
 /* ============================================================================================= */
 
-/** Run-time version as "MAJOR.MINOR.PATCH". Compare with WEFM_VERSION_* to detect a mismatch. */
+/** Run-time version as "MAJOR.MINOR.PATCH" (static string). Compare with WEFM_VERSION_* to detect a
+ *  header/library mismatch. Never fails. */
 WEFM_API const char* wefm_version(void);
-/** Run-time version as WEFM_VERSION_NUMBER. */
+/** Run-time version as WEFM_VERSION_NUMBER (MAJOR*10000 + MINOR*100 + PATCH). Never fails. */
 WEFM_API int wefm_version_number(void);
-/** Non-zero if this build factorises with SuiteSparse CHOLMOD, zero for the Eigen-only build. */
+/** Non-zero if this build factorises with SuiteSparse CHOLMOD, zero for the Eigen-only build (where
+ *  WEFM_SOLVER_CHOLMOD gives WEFM_ERROR_UNSUPPORTED). Never fails. */
 WEFM_API int wefm_has_suitesparse(void);
 
 /* ============================================================================================= */
 /* Options                                                                                       */
 /* ============================================================================================= */
 
+/** wefm_options.method: how the layout is computed. */
 typedef enum wefm_method {
   WEFM_METHOD_GLOBAL = 0,  /**< global least squares with Lagrange constraints (paper §4.2) */
   WEFM_METHOD_ROLLOUT = 1  /**< iterative roll-out with Gauss-Seidel sweeps (paper §4.1) */
 } wefm_method;
 
+/** How the two sides of a repeated edge (seam, slit, scar) are related in the domain. */
 typedef enum wefm_edge_mode {
   WEFM_EDGE_AUTO = 0,      /**< choose by score (METHOD §7 step 2) */
   WEFM_EDGE_FREE = 1,      /**< the two sides are independent */
@@ -143,12 +170,14 @@ typedef enum wefm_edge_mode {
   WEFM_EDGE_ROTATIONAL = 4 /**< the two sides are related by a rotation about a free centre */
 } wefm_edge_mode;
 
+/** wefm_options.solver: the sparse factorisation. */
 typedef enum wefm_solver {
   WEFM_SOLVER_AUTO = 0,    /**< CHOLMOD when built with it, else Eigen */
   WEFM_SOLVER_CHOLMOD = 1, /**< SuiteSparse CHOLMOD supernodal Cholesky */
   WEFM_SOLVER_EIGEN = 2    /**< Eigen's SimplicialLDLT (permissive licence) */
 } wefm_solver;
 
+/** Solver options; fill with wefm_options_init() first (see "ABI" in the conventions). */
 typedef struct wefm_options {
   size_t struct_size;        /**< set by wefm_options_init */
   double s;                  /**< target roll-out exponent in [0,2]: 0 conformal, 1 altitude, 2 area. Default 1 */
@@ -183,11 +212,13 @@ WEFM_API wefm_status wefm_options_init(wefm_options* options, size_t struct_size
 /* Triangle meshes read from files                                                              */
 /* ============================================================================================= */
 
+/** A triangle mesh read from a file or made from arrays (opaque, reference counted). */
 typedef struct wefm_mesh wefm_mesh;
 
+/** What wefm_mesh_get_info() reports; fill with wefm_mesh_info_init() first. */
 typedef struct wefm_mesh_info {
-  size_t struct_size;
-  int64_t vertices, triangles;
+  size_t struct_size;            /**< set by wefm_mesh_info_init() */
+  int64_t vertices, triangles;   /**< counts */
   int64_t boundary_loops;        /**< boundary cycles of the triangulation */
   int64_t components;            /**< edge-connected components */
   int64_t genus;                 /**< from Euler characteristic, per the whole mesh; -1 if non-manifold */
@@ -197,9 +228,9 @@ typedef struct wefm_mesh_info {
   int64_t duplicate_triangles;   /**< triangles on the same three vertices as another */
   int64_t inconsistent_edges;    /**< interior edges whose two triangles disagree in orientation */
   int64_t merged_vertices;       /**< vertices merged while reading (STL) */
-  double bbox_min[3], bbox_max[3];
+  double bbox_min[3], bbox_max[3]; /**< axis-aligned bounding box */
   double area;                   /**< total 3D area */
-  double mean_edge_length;
+  double mean_edge_length;       /**< mean length of the facet edges */
 } wefm_mesh_info;
 
 /** Zero `info` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */
@@ -209,31 +240,70 @@ WEFM_API wefm_status wefm_mesh_info_init(wefm_mesh_info* info, size_t struct_siz
  * Read a triangle mesh: OBJ, OFF, STL (ASCII or binary) or PLY, chosen by extension.
  * STL vertices closer than `merge_tolerance` (relative to the bounding-box diagonal; <= 0 uses 1e-9)
  * are merged; the count is in wefm_mesh_info.merged_vertices. Polygons are fan-triangulated.
- * On failure *out is NULL and wefm_last_error() says what is wrong.
+ * @param path             file name (UTF-8 bytes as the C library opens them).
+ * @param merge_tolerance  STL vertex merging distance, relative; <= 0 for the default.
+ * @param[out] out         the new mesh, one reference owned by the caller (wefm_mesh_release());
+ *                         NULL on failure.
+ * @return WEFM_ERROR_IO (cannot open or read), WEFM_ERROR_UNSUPPORTED (extension), WEFM_ERROR_INVALID_MESH
+ *         (malformed content); wefm_last_error() says what is wrong.
  */
 WEFM_API wefm_status wefm_mesh_read(const char* path, double merge_tolerance, wefm_mesh** out);
-/** Create a mesh from arrays (copied). Indices are checked for range only. */
+/**
+ * Create a mesh from arrays (copied). Indices are checked for range only.
+ * @param vertex_count    number of vertices (0 .. 2^31-1).
+ * @param xyz             3 doubles per vertex.
+ * @param triangle_count  number of triangles.
+ * @param triangles       3 vertex indices per triangle.
+ * @param[out] out        the new mesh, owned by the caller (wefm_mesh_release()); NULL on failure.
+ * @return WEFM_ERROR_INVALID_ARGUMENT (negative or too large counts), WEFM_ERROR_OUT_OF_RANGE (an index);
+ *         details in wefm_last_error().
+ */
 WEFM_API wefm_status wefm_mesh_create(int64_t vertex_count, const double* xyz, int64_t triangle_count,
                                       const int32_t* triangles, wefm_mesh** out);
+/** Add a reference to `mesh` (each needs its own wefm_mesh_release()). */
 WEFM_API wefm_status wefm_mesh_retain(wefm_mesh* mesh);
+/** Drop a reference; the last one frees the mesh. NULL is ignored. Faces made from it keep their copy. */
 WEFM_API void wefm_mesh_release(wefm_mesh* mesh);
-/** xyz: 3 doubles per vertex. */
+/**
+ * The vertices, by the size-query protocol (see "Buffers").
+ * @param mesh          the mesh.
+ * @param[out] xyz      3 doubles per vertex, or NULL to query the size.
+ * @param capacity      elements (doubles) available in `xyz`.
+ * @param[out] count    elements needed: 3 * vertices.
+ * @return WEFM_ERROR_BUFFER_TOO_SMALL if capacity < *count (nothing written).
+ */
 WEFM_API wefm_status wefm_mesh_get_vertices(const wefm_mesh* mesh, double* xyz, int64_t capacity, int64_t* count);
-/** triangles: 3 int32 per triangle. */
+/** The triangles, 3 int32 vertex indices each, by the size-query protocol (as wefm_mesh_get_vertices()). */
 WEFM_API wefm_status wefm_mesh_get_triangles(const wefm_mesh* mesh, int32_t* tri, int64_t capacity, int64_t* count);
-/** What a user checks before flattening. */
+/**
+ * What a user checks before flattening: counts, boundary loops, genus, non-manifold and degenerate
+ * elements, bounding box, area.
+ * @param mesh       the mesh.
+ * @param[in,out] info  filled with wefm_mesh_info_init() first; only its first struct_size bytes are written.
+ * @return WEFM_ERROR_INVALID_ARGUMENT if info->struct_size is too small (init not called).
+ */
 WEFM_API wefm_status wefm_mesh_get_info(const wefm_mesh* mesh, wefm_mesh_info* info);
 
 /* ============================================================================================= */
 /* Faces                                                                                         */
 /* ============================================================================================= */
 
+/** A face to flatten: mesh, topology, constraints, options and the last result (opaque, reference counted). */
 typedef struct wefm_face wefm_face;
 
+/**
+ * Create an empty face (no mesh yet: solve and queries give WEFM_ERROR_INVALID_STATE until
+ * wefm_face_set_mesh()).
+ * @param[out] out  the new face, one reference owned by the caller (wefm_face_release()); NULL on failure.
+ * @return WEFM_ERROR_OUT_OF_MEMORY.
+ */
 WEFM_API wefm_status wefm_face_create(wefm_face** out);
+/** Add a reference to `face` (each needs its own wefm_face_release()). Thread-safe. */
 WEFM_API wefm_status wefm_face_retain(wefm_face* face);
+/** Drop a reference; the last one frees the face and its results. NULL is ignored. Thread-safe. */
 WEFM_API void wefm_face_release(wefm_face* face);
-/** Detailed message of the last failing call on this face ("" if none). Valid until the next call. */
+/** Detailed message of the last failing call on this face ("" if none): owned by the face, valid until
+ *  the next call on it. A NULL face gives a static message, never NULL. */
 WEFM_API const char* wefm_face_last_error(const wefm_face* face);
 
 /**
@@ -241,14 +311,39 @@ WEFM_API const char* wefm_face_last_error(const wefm_face* face);
  * oriented. Validated here (NaN, index range, repeated vertex in a triangle, duplicate triangles,
  * non-manifold edges or vertices, inconsistent orientation, several components): a rejected mesh
  * leaves the face as it was. Zero-area triangles are accepted (see wefm_options.min_beta) and counted.
+ * The arrays are copied. A new mesh clears topology, constraints and results.
+ * @param face            the face.
+ * @param vertex_count    number of vertices (< 2^31).
+ * @param xyz             3 doubles per vertex.
+ * @param triangle_count  number of triangles.
+ * @param triangles       3 int32 vertex indices per triangle.
+ * @return WEFM_ERROR_INVALID_ARGUMENT (negative counts), WEFM_ERROR_INVALID_MESH (what is wrong and
+ *         where: wefm_face_last_error()).
  */
 WEFM_API wefm_status wefm_face_set_mesh(wefm_face* face, int64_t vertex_count, const double* xyz,
                                         int64_t triangle_count, const int32_t* triangles);
+/** wefm_face_set_mesh() with int64_t triangle indices (values must still fit in int32_t). */
 WEFM_API wefm_status wefm_face_set_mesh_i64(wefm_face* face, int64_t vertex_count, const double* xyz,
                                             int64_t triangle_count, const int64_t* triangles);
+/** wefm_face_set_mesh() from a wefm_mesh (copied: the mesh may be released afterwards). */
 WEFM_API wefm_status wefm_face_set_mesh_from(wefm_face* face, const wefm_mesh* mesh);
 
+/**
+ * Set the options of the next solves (the face starts with the defaults of wefm_options_init()).
+ * @param face     the face.
+ * @param options  filled with wefm_options_init() first; read up to options->struct_size bytes, fields
+ *                 past it take their defaults. Copied.
+ * @return WEFM_ERROR_INVALID_ARGUMENT (struct_size too small, a value out of its range: the message
+ *         names the field), WEFM_ERROR_UNSUPPORTED (WEFM_SOLVER_CHOLMOD in a build without it). On error
+ *         the face keeps its previous options.
+ */
 WEFM_API wefm_status wefm_face_set_options(wefm_face* face, const wefm_options* options);
+/**
+ * The face's current options.
+ * @param face             the face.
+ * @param[in,out] options  struct_size set (wefm_options_init()); only that many bytes are written.
+ * @return WEFM_ERROR_INVALID_ARGUMENT if options->struct_size is too small.
+ */
 WEFM_API wefm_status wefm_face_get_options(const wefm_face* face, wefm_options* options);
 
 /* ---- Topology ------------------------------------------------------------------------------ */
@@ -261,43 +356,88 @@ WEFM_API wefm_status wefm_face_get_options(const wefm_face* face, wefm_options* 
  * use queries); errors name the edge or loop.
  */
 
-/** Forget edges, loops, seams and outer-loop choice: back to the derived topology. */
+/** Forget edges, loops, seams, edge modes and the outer-loop choice: back to the derived topology.
+ *  Like every topology change, clears constraints and the result. */
 WEFM_API wefm_status wefm_face_clear_topology(wefm_face* face);
-/** Add an edge as a chain of `n` vertex indices (n >= 1; n == 1 is a degenerate edge, e.g. a pole). */
+/**
+ * Add an edge as a chain of vertex indices along facet edges.
+ * @param face          the face (with a mesh).
+ * @param n             chain length (n >= 1; n == 1 is a degenerate edge, e.g. a pole).
+ * @param chain         n vertex indices (copied).
+ * @param[out] edge_id  the new edge's id (0, 1, ... in order of addition); may be NULL.
+ * @return WEFM_ERROR_INVALID_ARGUMENT (n < 1), WEFM_ERROR_OUT_OF_RANGE (a vertex index),
+ *         WEFM_ERROR_INVALID_STATE (no mesh). Chains that are not along facet edges are reported by
+ *         wefm_face_build() as WEFM_ERROR_INVALID_TOPOLOGY.
+ */
 WEFM_API wefm_status wefm_face_add_edge(wefm_face* face, int64_t n, const int32_t* chain, int32_t* edge_id);
-/** Add a loop of `n` edge uses: edges[j] traversed reversed if reversed[j] != 0 (reversed may be NULL). */
+/**
+ * Add a loop of edge uses keeping the face on the left.
+ * @param face          the face.
+ * @param n             number of edge uses (>= 1).
+ * @param edges         n edge ids from wefm_face_add_edge().
+ * @param reversed      n flags: edges[j] is traversed against its chain if reversed[j] != 0; NULL = none.
+ * @param[out] loop_id  the new loop's id; may be NULL.
+ * @return WEFM_ERROR_INVALID_ARGUMENT (n < 1), WEFM_ERROR_OUT_OF_RANGE (an edge id not added yet).
+ *         Loops that do not close are reported by wefm_face_build().
+ */
 WEFM_API wefm_status wefm_face_add_loop(wefm_face* face, int64_t n, const int32_t* edges,
                                         const int32_t* reversed, int32_t* loop_id);
-/** Designate the outer loop: a loop id when loops were given, else a boundary-cycle index. -1 = automatic. */
+/** Designate the outer loop: a loop id when loops were given, else a boundary-cycle index; -1 = automatic
+ *  (the longest in 3D). WEFM_ERROR_OUT_OF_RANGE below -1; a loop that does not exist is reported by
+ *  wefm_face_build() as WEFM_ERROR_INVALID_TOPOLOGY. */
 WEFM_API wefm_status wefm_face_set_outer_loop(wefm_face* face, int32_t loop);
-/** Cut along `n` facet edges given as 2n vertex indices (pairs). Each becomes part of a repeated edge. */
+/**
+ * Cut along facet edges; each becomes part of a repeated edge (seam).
+ * @param face          the face.
+ * @param n             number of facet edges (>= 0).
+ * @param vertex_pairs  2n vertex indices, one pair per facet edge (copied).
+ * @return WEFM_ERROR_INVALID_ARGUMENT (n < 0), WEFM_ERROR_OUT_OF_RANGE (a vertex index). Pairs that are
+ *         not facet edges are reported by wefm_face_build().
+ */
 WEFM_API wefm_status wefm_face_add_seams(wefm_face* face, int64_t n, const int32_t* vertex_pairs);
-/** Force the mode of one edge (wefm_edge_mode). Only repeated edges are affected by the mode. */
+/**
+ * Force the mode of one edge (only repeated edges are affected by the mode).
+ * @param face  the face.
+ * @param edge  edge id (0 .. wefm_face_edge_count() - 1).
+ * @param mode  a wefm_edge_mode; WEFM_EDGE_AUTO lets the solve choose by score.
+ * @return WEFM_ERROR_OUT_OF_RANGE (edge), WEFM_ERROR_INVALID_ARGUMENT (mode), WEFM_ERROR_INVALID_STATE
+ *         (no mesh); topology errors as wefm_face_build(). Clears the result.
+ */
 WEFM_API wefm_status wefm_face_set_edge_mode(wefm_face* face, int32_t edge, int mode);
 
-/** Build (if needed) and validate the topology and the vertex uses; returns the first problem found. */
+/** Build (if needed) and validate the topology and the vertex uses.
+ *  @return the first problem found: WEFM_ERROR_INVALID_STATE (no mesh), WEFM_ERROR_INVALID_TOPOLOGY
+ *          (the message names the edge or loop). */
 WEFM_API wefm_status wefm_face_build(wefm_face* face);
-/** Number of edges (given or derived). Builds the topology. */
+/** Number of edges (given or derived) in *count. Builds the topology: errors as wefm_face_build(). */
 WEFM_API wefm_status wefm_face_edge_count(wefm_face* face, int64_t* count);
-/** Vertex chain of edge `edge`. */
+/** Vertex chain of edge `edge` (1 int32 per vertex), by the size-query protocol.
+ *  WEFM_ERROR_OUT_OF_RANGE for an edge that does not exist; topology errors as wefm_face_build(). */
 WEFM_API wefm_status wefm_face_get_edge(wefm_face* face, int32_t edge, int32_t* chain, int64_t capacity, int64_t* count);
-/** Non-zero in *repeated if the edge is used twice by the loops. */
+/** Non-zero in *repeated if the edge is used twice by the loops. WEFM_ERROR_OUT_OF_RANGE for a bad edge. */
 WEFM_API wefm_status wefm_face_edge_is_repeated(wefm_face* face, int32_t edge, int32_t* repeated);
+/** Number of loops (given, or the boundary cycles) in *count. Errors as wefm_face_build(). */
 WEFM_API wefm_status wefm_face_loop_count(wefm_face* face, int64_t* count);
-/** Edge uses of a loop: 2 int32 per use (edge id, reversed flag). */
+/** Edge uses of a loop: 2 int32 per use (edge id, reversed flag), by the size-query protocol.
+ *  WEFM_ERROR_OUT_OF_RANGE for a loop that does not exist. */
 WEFM_API wefm_status wefm_face_get_loop(wefm_face* face, int32_t loop, int32_t* edge_uses, int64_t capacity, int64_t* count);
-/** Vertex uses along a loop in order (face on the left). */
+/** Vertex uses along a loop in order (face on the left), by the size-query protocol.
+ *  WEFM_ERROR_OUT_OF_RANGE for a loop that does not exist. */
 WEFM_API wefm_status wefm_face_get_loop_uses(wefm_face* face, int32_t loop, int32_t* uses, int64_t capacity, int64_t* count);
+/** The outer loop's id in *loop (given or chosen). Errors as wefm_face_build(). */
 WEFM_API wefm_status wefm_face_outer_loop(wefm_face* face, int32_t* loop);
 
 /* ---- Vertex uses (the unknowns) ------------------------------------------------------------ */
 
+/** Number of vertex uses (the unknowns: a vertex on a repeated edge has one use per side) in *count.
+ *  Errors as wefm_face_build(). */
 WEFM_API wefm_status wefm_face_use_count(wefm_face* face, int64_t* count);
-/** The vertex of every use: 1 int32 per use. */
+/** The vertex of every use: 1 int32 per use, by the size-query protocol. */
 WEFM_API wefm_status wefm_face_get_use_vertices(wefm_face* face, int32_t* vertices, int64_t capacity, int64_t* count);
-/** The uses of every triangle: 3 int32 per triangle, in the triangle's corner order. */
+/** The uses of every triangle: 3 int32 per triangle, in the triangle's corner order (size-query protocol). */
 WEFM_API wefm_status wefm_face_get_triangle_uses(wefm_face* face, int32_t* uses, int64_t capacity, int64_t* count);
-/** The uses of one vertex (one unless the vertex lies on a repeated edge). */
+/** The uses of one vertex (one unless the vertex lies on a repeated edge), by the size-query protocol.
+ *  WEFM_ERROR_OUT_OF_RANGE for a vertex index outside the mesh. */
 WEFM_API wefm_status wefm_face_get_vertex_uses(wefm_face* face, int32_t vertex, int32_t* uses, int64_t capacity, int64_t* count);
 
 /* ---- Constraints --------------------------------------------------------------------------- */
@@ -307,11 +447,30 @@ WEFM_API wefm_status wefm_face_get_vertex_uses(wefm_face* face, int32_t vertex, 
  * rotation and scale. Pins are constraints with one term.
  */
 
-/** Pin use `use` at (u, v). */
+/**
+ * Pin use `use` at (u, v): a constraint with one term. Clears the result.
+ * @param face                the face.
+ * @param use                 a vertex use (wefm_face_get_vertex_uses()).
+ * @param u                   target u.
+ * @param v                   target v.
+ * @param[out] constraint_id  the constraint's id; may be NULL.
+ * @return WEFM_ERROR_INVALID_CONSTRAINT for an unknown use (here or at the solve).
+ */
 WEFM_API wefm_status wefm_face_add_pin(wefm_face* face, int32_t use, double u, double v, int32_t* constraint_id);
-/** Add sum_j g_j z_{uses[j]} = c; `coefficients` holds 2n doubles (re, im), `rhs` 2 doubles. */
+/**
+ * Add the linear constraint sum_j g_j z_{uses[j]} = c. Clears the result.
+ * @param face                the face.
+ * @param n                   number of terms (>= 1).
+ * @param uses                n vertex uses.
+ * @param coefficients        2n doubles: g_j as (re, im).
+ * @param rhs                 2 doubles: c as (re, im).
+ * @param[out] constraint_id  the constraint's id; may be NULL.
+ * @return WEFM_ERROR_INVALID_CONSTRAINT (n < 1, an unknown use); WEFM_ERROR_SINGULAR at the solve for
+ *         contradictory constraints.
+ */
 WEFM_API wefm_status wefm_face_add_constraint(wefm_face* face, int64_t n, const int32_t* uses,
                                               const double* coefficients, const double* rhs, int32_t* constraint_id);
+/** Remove every caller constraint (pins too): back to the automatic gauges. Clears the result. */
 WEFM_API wefm_status wefm_face_clear_constraints(wefm_face* face);
 
 /* ---- Solving ------------------------------------------------------------------------------- */
@@ -322,43 +481,56 @@ WEFM_API wefm_status wefm_face_clear_constraints(wefm_face* face);
  * Return non-zero to cancel. Called on the solving thread.
  */
 typedef int (*wefm_progress_fn)(void* user_data, double fraction, const char* stage);
+/** Set (or with fn = NULL remove) the progress callback of later solves; `user_data` is passed back
+ *  unchanged and never dereferenced by the library. */
 WEFM_API wefm_status wefm_face_set_progress_callback(wefm_face* face, wefm_progress_fn fn, void* user_data);
 
-/** Flatten the face with its options. On failure or cancel the previous result (if any) is kept. */
+/**
+ * Flatten the face with its options, topology and constraints. On failure or cancel the previous
+ * result (if any) is kept; WEFM_ERROR_NOT_CONVERGED keeps the best layout reached as the result.
+ * @return WEFM_ERROR_INVALID_STATE (no mesh), WEFM_ERROR_INVALID_TOPOLOGY, WEFM_ERROR_INVALID_CONSTRAINT,
+ *         WEFM_ERROR_SINGULAR, WEFM_ERROR_NOT_POSITIVE_DEFINITE, WEFM_ERROR_NOT_CONVERGED,
+ *         WEFM_ERROR_CANCELLED, WEFM_ERROR_OUT_OF_MEMORY (also for options.memory_limit_mb), with the
+ *         detail in wefm_face_last_error().
+ */
 WEFM_API wefm_status wefm_face_solve(wefm_face* face);
 /** Ask a running solve to stop at its next check (thread-safe). The solve returns WEFM_ERROR_CANCELLED. */
 WEFM_API wefm_status wefm_face_cancel(wefm_face* face);
-/** Non-zero in *solved when a result is available. */
+/** Non-zero in *solved when a result is available (the result queries below then succeed). */
 WEFM_API wefm_status wefm_face_has_result(const wefm_face* face, int32_t* solved);
 
 /* ---- Results ------------------------------------------------------------------------------- */
 
-/** UV of every use: 2 doubles per use. */
+/** UV of every use: 2 doubles per use, by the size-query protocol.
+ *  WEFM_ERROR_INVALID_STATE before a successful solve (and after a change that cleared the result). */
 WEFM_API wefm_status wefm_face_get_uv(wefm_face* face, double* uv, int64_t capacity, int64_t* count);
-/** Decision per edge (wefm_edge_mode, AUTO resolved): 1 int32 per edge; non-repeated edges give FREE. */
+/** Decision per edge (wefm_edge_mode, AUTO resolved): 1 int32 per edge, non-repeated edges give FREE.
+ *  Size-query protocol; WEFM_ERROR_INVALID_STATE without a result. */
 WEFM_API wefm_status wefm_face_get_edge_modes(wefm_face* face, int32_t* modes, int64_t capacity, int64_t* count);
-/** Score of each candidate mode tried for a repeated edge: 5 doubles indexed by wefm_edge_mode (NaN = not tried). */
+/** Score of each candidate mode tried for an edge: 5 doubles indexed by wefm_edge_mode (NaN = not tried).
+ *  Size-query protocol; WEFM_ERROR_OUT_OF_RANGE for a bad edge, WEFM_ERROR_INVALID_STATE without a result. */
 WEFM_API wefm_status wefm_face_get_edge_scores(wefm_face* face, int32_t edge, double* scores, int64_t capacity, int64_t* count);
 
+/** Quality and cost of the last solve (wefm_face_get_report()); fill with wefm_report_init() first. */
 typedef struct wefm_report {
-  size_t struct_size;
+  size_t struct_size;            /**< set by wefm_report_init() */
   double score;                  /**< METHOD §8: 1 is perfect; -1 if any flip; -2 if the boundary self-intersects */
-  int64_t flipped_triangles;
-  int64_t boundary_intersections;
+  int64_t flipped_triangles;     /**< triangles with negative UV area */
+  int64_t boundary_intersections; /**< crossing pairs of boundary segments in UV */
   double area_distortion_mean;   /**< 3D-area weighted mean of |log(UV area / 3D area)| after area normalisation */
-  double area_distortion_max;
+  double area_distortion_max;    /**< the largest of those per triangle */
   double angle_distortion_mean;  /**< 3D-area weighted mean of sigma_max/sigma_min of the Jacobian */
-  double angle_distortion_max;
+  double angle_distortion_max;   /**< the largest of those per triangle */
   double uv_area;                /**< total UV area as returned */
-  double area_3d;
+  double area_3d;                /**< total 3D area */
   double s;                      /**< s of the returned layout: the best-scoring iterate, which may be below the target */
   int32_t converged;             /**< non-zero when every rho fixed point converged */
-  int32_t method;
+  int32_t method;                /**< wefm_method used */
   int32_t s_steps;               /**< continuation steps taken */
   int32_t rho_iterations;        /**< total rho iterations over all steps */
   double rho_change;             /**< final relative rho change */
-  int64_t symbolic_analyses;
-  int64_t numeric_factorizations;
+  int64_t symbolic_analyses;     /**< sparse symbolic analyses (orderings) */
+  int64_t numeric_factorizations; /**< numeric Cholesky factorisations */
   int64_t solves;                /**< triangular solve passes with the factor (one per right-hand side) */
   int64_t iterative_iterations;  /**< PCG / roll-out sweep iterations */
   int32_t auto_cut;              /**< non-zero if the solve cut the face itself */
@@ -370,8 +542,15 @@ typedef struct wefm_report {
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */
 WEFM_API wefm_status wefm_report_init(wefm_report* report, size_t struct_size);
+/**
+ * Quality report, counters and timings of the current result.
+ * @param face            the face.
+ * @param[in,out] report  struct_size set (wefm_report_init()); only that many bytes are written.
+ * @return WEFM_ERROR_INVALID_ARGUMENT (struct_size too small), WEFM_ERROR_INVALID_STATE (no result).
+ */
 WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* report);
-/** Per continuation step: 3 doubles (s, rho iterations, final rho change). */
+/** Per continuation step: 3 doubles (s, rho iterations, final rho change), by the size-query protocol.
+ *  WEFM_ERROR_INVALID_STATE without a result. */
 WEFM_API wefm_status wefm_face_get_step_history(const wefm_face* face, double* steps, int64_t capacity, int64_t* count);
 
 /* ---- Mapping ------------------------------------------------------------------------------- */
@@ -389,20 +568,24 @@ WEFM_API wefm_status wefm_face_map_3d_to_uv(wefm_face* face, int64_t n, const do
 
 /* ---- Output -------------------------------------------------------------------------------- */
 
-/** Write OBJ with v (3D), vt (UV per use) and f v/vt. */
+/** Write the result as OBJ: v (3D), vt (UV per use) and f v/vt.
+ *  @return WEFM_ERROR_INVALID_STATE (no result), WEFM_ERROR_IO (cannot write `path`). */
 WEFM_API wefm_status wefm_face_write_obj(wefm_face* face, const char* path);
 
 /* ============================================================================================= */
 /* Meshing the domain (METHOD §9)                                                                */
 /* ============================================================================================= */
 
+/** A mesh of a solved domain mapped to 3D (opaque, reference counted). */
 typedef struct wefm_domain_mesh wefm_domain_mesh;
 
+/** wefm_mesh_options.type. */
 typedef enum wefm_mesh_type {
   WEFM_MESH_FREE = 0,        /**< constrained Delaunay + refinement, triangles */
   WEFM_MESH_TRANSFINITE = 1  /**< Coons patch on four corners, quads (or split triangles) */
 } wefm_mesh_type;
 
+/** Options of wefm_face_mesh_domain(); fill with wefm_mesh_options_init() first. */
 typedef struct wefm_mesh_options {
   size_t struct_size;
   int type;                  /**< wefm_mesh_type. Default FREE */
@@ -415,6 +598,7 @@ typedef struct wefm_mesh_options {
   int64_t max_elements;      /**< refuse to exceed this many elements (0 = no cap). Default 0 */
 } wefm_mesh_options;
 
+/** Quality and cost of a domain mesh (wefm_domain_mesh_get_report()); fill with wefm_mesh_report_init() first. */
 typedef struct wefm_mesh_report {
   size_t struct_size;
   int64_t nodes, elements;
@@ -439,11 +623,14 @@ WEFM_API wefm_status wefm_mesh_report_init(wefm_mesh_report* report, size_t stru
  * vertices) instead of discretising it at the global size. The nodes must lie on the edge's facet chain.
  */
 WEFM_API wefm_status wefm_face_set_edge_nodes(wefm_face* face, int32_t edge, int64_t n, const double* xyz);
+/** Forget every wefm_face_set_edge_nodes(): all edges are discretised at the global size again. */
 WEFM_API wefm_status wefm_face_clear_edge_nodes(wefm_face* face);
 
 /** Mesh the solved domain and map it to 3D. Needs a result (wefm_face_solve). */
 WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_options* options, wefm_domain_mesh** out);
+/** Add a reference to `mesh` (each needs its own wefm_domain_mesh_release()). */
 WEFM_API wefm_status wefm_domain_mesh_retain(wefm_domain_mesh* mesh);
+/** Drop a reference; the last one frees the mesh. NULL is ignored. */
 WEFM_API void wefm_domain_mesh_release(wefm_domain_mesh* mesh);
 /** Node UV: 2 doubles per node. */
 WEFM_API wefm_status wefm_domain_mesh_get_uv(const wefm_domain_mesh* mesh, double* uv, int64_t capacity, int64_t* count);
@@ -451,6 +638,8 @@ WEFM_API wefm_status wefm_domain_mesh_get_uv(const wefm_domain_mesh* mesh, doubl
 WEFM_API wefm_status wefm_domain_mesh_get_xyz(const wefm_domain_mesh* mesh, double* xyz, int64_t capacity, int64_t* count);
 /** Elements: nodes_per_element int32 per element. */
 WEFM_API wefm_status wefm_domain_mesh_get_elements(const wefm_domain_mesh* mesh, int32_t* nodes, int64_t capacity, int64_t* count);
+/** Quality report of the mesh; `report` filled with wefm_mesh_report_init() first, only its first
+ *  struct_size bytes are written. */
 WEFM_API wefm_status wefm_domain_mesh_get_report(const wefm_domain_mesh* mesh, wefm_mesh_report* report);
 /** Write the 3D mesh as OBJ (with vt = UV). */
 WEFM_API wefm_status wefm_domain_mesh_write_obj(const wefm_domain_mesh* mesh, const char* path);
