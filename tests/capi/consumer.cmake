@@ -2,7 +2,8 @@
 #   install       fresh `cmake --install` of the build tree into PREFIX, then check what is there
 #   find_package  configure, build and run tests/capi/consumer against PREFIX with find_package(wefm)
 #   pkg-config    compile and run the same program with the flags `pkg-config wefm` gives
-# Inputs: MODE PREFIX BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER LIBDIR INCLUDEDIR VERSION SOVERSION
+# Inputs: MODE PREFIX BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER LIBDIR INCLUDEDIR VERSION SOVERSION, and FLAGS
+# (compile and link flags the library's build needs in its consumers: the sanitizers of a sanitizer build)
 cmake_minimum_required(VERSION 3.20)
 
 function(run)
@@ -35,7 +36,8 @@ if(MODE STREQUAL "install")
 elseif(MODE STREQUAL "find_package")
   file(REMOVE_RECURSE ${WORK_DIR})
   run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR} -DCMAKE_C_COMPILER=${C_COMPILER}
-      -DCMAKE_PREFIX_PATH=${PREFIX} -DWEFM_EXPECTED_PREFIX=${PREFIX} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
+      -DCMAKE_PREFIX_PATH=${PREFIX} -DWEFM_EXPECTED_PREFIX=${PREFIX} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
+      "-DCMAKE_C_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS}")
   run(${CMAKE_COMMAND} --build ${WORK_DIR})
   run(${WORK_DIR}/consumer)
 elseif(MODE STREQUAL "pkg-config")
@@ -61,7 +63,8 @@ elseif(MODE STREQUAL "pkg-config")
   if(NOT libdir STREQUAL expected_libdir)
     message(FATAL_ERROR "pkg-config libdir ${libdir} is not the installed ${expected_libdir}")
   endif()
-  run(${C_COMPILER} -std=c99 -Wall -Wextra -pedantic -Werror ${cflags} ${SOURCE_DIR}/consumer.c ${libs}
+  separate_arguments(flags UNIX_COMMAND "${FLAGS}")
+  run(${C_COMPILER} -std=c99 -Wall -Wextra -pedantic -Werror ${flags} ${cflags} ${SOURCE_DIR}/consumer.c ${libs}
       -Wl,-rpath,${libdir} -o ${WORK_DIR}/consumer)
   run(${WORK_DIR}/consumer)
 else()
