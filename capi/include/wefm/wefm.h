@@ -36,11 +36,13 @@
  * Threads.     Distinct handles may be used concurrently from different threads. One handle must not
  *              be used from two threads at once, with one exception: wefm_face_cancel() may be called
  *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
- *              The library starts no threads of its own unless wefm_options.threads > 1.
+ *              The library starts no threads of its own unless wefm_options.threads > 1; the
+ *              OpenBLAS under CHOLMOD keeps a thread pool from load time (OPENBLAS_NUM_THREADS=1 stops it).
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or
- *              edge modes clears results. Options apply to the next solve: the result stays. A failed or cancelled solve keeps the previous result.
+ *              edge modes clears results. Options apply to the next solve: the result stays. A
+ *              failed or cancelled solve keeps the previous result.
  *
  * ABI.         Structs that may grow (wefm_options, wefm_report, wefm_mesh_options,
  *              wefm_mesh_report, wefm_mesh_info) start with `struct_size`. Their *_init function
