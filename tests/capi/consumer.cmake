@@ -2,7 +2,8 @@
 #   install       fresh `cmake --install` of the build tree into PREFIX, then check what is there
 #   find_package  configure, build and run tests/capi/consumer against PREFIX with find_package(wefm)
 #   pkg-config    compile and run the same program with the flags `pkg-config wefm` gives
-# Inputs: MODE PREFIX BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER LIBDIR INCLUDEDIR VERSION SOVERSION, and FLAGS
+#   fortran       configure, build and run tests/capi/consumer_fortran (wefm::wefm_fortran, module wefm)
+# Inputs: MODE PREFIX BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER Fortran_COMPILER LIBDIR INCLUDEDIR VERSION SOVERSION, and FLAGS
 # (compile and link flags the library's build needs in its consumers: the sanitizers of a sanitizer build)
 cmake_minimum_required(VERSION 3.20)
 
@@ -33,11 +34,15 @@ if(MODE STREQUAL "install")
       message(FATAL_ERROR "${LIBDIR}/${link} is not a symbolic link")
     endif()
   endforeach()
-elseif(MODE STREQUAL "find_package")
+elseif(MODE STREQUAL "find_package" OR MODE STREQUAL "fortran")
   file(REMOVE_RECURSE ${WORK_DIR})
-  run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR} -DCMAKE_C_COMPILER=${C_COMPILER}
-      -DCMAKE_PREFIX_PATH=${PREFIX} -DWEFM_EXPECTED_PREFIX=${PREFIX} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF
-      "-DCMAKE_C_FLAGS=${FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS}")
+  if(MODE STREQUAL "fortran")
+    set(lang -DCMAKE_Fortran_COMPILER=${Fortran_COMPILER} "-DCMAKE_Fortran_FLAGS=${FLAGS}")
+  else()
+    set(lang -DCMAKE_C_COMPILER=${C_COMPILER} "-DCMAKE_C_FLAGS=${FLAGS}")
+  endif()
+  run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR} ${lang} "-DCMAKE_EXE_LINKER_FLAGS=${FLAGS}"
+      -DCMAKE_PREFIX_PATH=${PREFIX} -DWEFM_EXPECTED_PREFIX=${PREFIX} -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF)
   run(${CMAKE_COMMAND} --build ${WORK_DIR})
   run(${WORK_DIR}/consumer)
 elseif(MODE STREQUAL "pkg-config")
