@@ -20,6 +20,7 @@ void Face::set_mesh(TriMesh mesh) {
   topo_.reset();
   rows_.clear();
   result_.reset();
+  edge_nodes_.clear();
 }
 
 void Face::set_options(const Options& o) {
@@ -29,6 +30,7 @@ void Face::set_options(const Options& o) {
 
 void Face::topology_changed() {
   topo_.reset();
+  edge_nodes_.clear();
   rows_.clear();
   result_.reset();
 }
@@ -91,6 +93,30 @@ const Topology& Face::topology() {
   require_mesh("the topology");
   if (!topo_) topo_ = build_topology(mesh_, spec_);
   return *topo_;
+}
+
+void Face::set_edge_nodes(Index edge, std::vector<Vec3> nodes) {
+  const Topology& tp = topology();
+  const Index ne = static_cast<Index>(tp.edges.size());
+  if (edge < 0 || edge >= ne) fail(Errc::out_of_range, "edge " + std::to_string(edge) + " does not exist (" + std::to_string(ne) + " edges)");
+  if (nodes.size() < 2) fail(Errc::invalid_argument, "edge nodes must include both end vertices (got " + std::to_string(nodes.size()) + " nodes)");
+  const MeshStats st = compute_stats(mesh_);
+  const double tol = 1e-6 * (st.bbox_max - st.bbox_min).norm();
+  const auto& ch = tp.edges[static_cast<size_t>(edge)];
+  for (size_t j = 0; j < nodes.size(); ++j) {
+    const Vec3& p = nodes[j];
+    if (!p.allFinite()) fail(Errc::invalid_argument, "edge node " + std::to_string(j) + " is not finite");
+    double best = ch.size() == 1 ? (mesh_.vertices[static_cast<size_t>(ch[0])] - p).norm() : 1e300;
+    for (size_t k = 0; k + 1 < ch.size(); ++k) {
+      const Vec3 a = mesh_.vertices[static_cast<size_t>(ch[k])], b = mesh_.vertices[static_cast<size_t>(ch[k + 1])];
+      const double l2 = (b - a).squaredNorm();
+      const double t = l2 > 0 ? std::min(1.0, std::max(0.0, (p - a).dot(b - a) / l2)) : 0.0;
+      best = std::min(best, (a + t * (b - a) - p).norm());
+    }
+    if (best > tol)
+      fail(Errc::invalid_argument, "edge node " + std::to_string(j) + " lies " + std::to_string(best) + " away from edge " + std::to_string(edge) + "'s facet chain");
+  }
+  edge_nodes_[edge] = std::move(nodes);
 }
 
 Index Face::add_constraint(LinearRow row) {

@@ -12,17 +12,19 @@ using meshing::P2;
 
 namespace {
 
-int sign128(__int128 v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
+__extension__ typedef __int128 i128;  // GCC/Clang: exact products of 64-bit integers
+
+int sign128(i128 v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 int sign(double v) { return v > 0 ? 1 : (v < 0 ? -1 : 0); }
 
 int exact_orient(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t cx, std::int64_t cy) {
-  return sign128(__int128(ax - cx) * (by - cy) - __int128(ay - cy) * (bx - cx));
+  return sign128(i128(ax - cx) * (by - cy) - i128(ay - cy) * (bx - cx));
 }
 
 int exact_incircle(const std::int64_t p[4][2]) {
-  __int128 m[3][3];
+  i128 m[3][3];
   for (int i = 0; i < 3; ++i) {
-    const __int128 dx = p[i][0] - p[3][0], dy = p[i][1] - p[3][1];
+    const i128 dx = p[i][0] - p[3][0], dy = p[i][1] - p[3][1];
     m[i][0] = dx, m[i][1] = dy, m[i][2] = dx * dx + dy * dy;
   }
   return sign128(m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]) + m[1][2] * (m[2][0] * m[0][1] - m[2][1] * m[0][0]) +

@@ -3,6 +3,7 @@
 // the invalidation rules of wefm.h (new mesh clears everything, topology or constraint changes clear
 // the result, a failed solve keeps the previous result).
 #include <atomic>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -30,6 +31,12 @@ class Face {
   // Builds and validates on first use after a change.
   const Topology& topology();
 
+  // Caller 3D nodes along an edge for meshing (wefm_face_set_edge_nodes), checked to lie on the
+  // edge's facet chain; forgotten when the mesh or the topology changes.
+  void set_edge_nodes(Index edge, std::vector<Vec3> nodes);
+  void clear_edge_nodes() { edge_nodes_.clear(); }
+  const std::map<Index, std::vector<Vec3>>& edge_nodes() const { return edge_nodes_; }
+
   Index add_constraint(LinearRow row);
   void clear_constraints();
   const std::vector<LinearRow>& constraints() const { return rows_; }
@@ -51,6 +58,7 @@ class Face {
   Options options_;
   std::vector<LinearRow> rows_;
   std::optional<FlattenResult> result_;
+  std::map<Index, std::vector<Vec3>> edge_nodes_;
 };
 
 }  // namespace wefm

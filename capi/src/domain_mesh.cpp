@@ -1,0 +1,156 @@
+// Meshing a solved domain: caller edge nodes, the mesh handle, its arrays, report and OBJ output.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "handles.hpp"
+#include "wefm/core/meshing/domain_mesh.hpp"
+
+struct wefm_domain_mesh {
+  std::atomic<int> refs{1};
+  wefm::meshing::DomainMesh mesh;
+};
+
+using wefm::capi::guarded;
+
+namespace {
+
+wefm::meshing::MeshOptions convert(const wefm_mesh_options& o) {
+  wefm::meshing::MeshOptions m;
+  m.type = static_cast<wefm::meshing::MeshType>(o.type);
+  m.size = o.size;
+  for (int k = 0; k < 4; ++k) m.corners[static_cast<size_t>(k)] = o.corners[k];
+  m.quads = o.quads != 0;
+  m.smoothing_iterations = o.smoothing_iterations;
+  m.corner_angle_deg = o.corner_angle_deg;
+  m.min_angle_deg = o.min_angle_deg;
+  m.max_elements = o.max_elements;
+  return m;
+}
+
+wefm_mesh_options default_mesh_options() {
+  wefm_mesh_options o{};
+  wefm_mesh_options_init(&o, sizeof o);
+  return o;
+}
+
+}  // namespace
+
+extern "C" {
+
+WEFM_API wefm_status wefm_face_set_edge_nodes(wefm_face* face, int32_t edge, int64_t n, const double* xyz) {
+  WEFM_REQUIRE(face, "wefm_face_set_edge_nodes");
+  WEFM_REQUIRE(xyz, "wefm_face_set_edge_nodes");
+  return guarded(&face->last_error, [&] {
+    if (n < 2) throw wefm::Error(wefm::Errc::invalid_argument, "edge nodes must include both end vertices (n = " + std::to_string(n) + ")");
+    std::vector<wefm::Vec3> nodes(static_cast<size_t>(n));
+    for (int64_t i = 0; i < n; ++i) nodes[static_cast<size_t>(i)] = wefm::Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    face->face.set_edge_nodes(edge, std::move(nodes));
+  });
+}
+
+WEFM_API wefm_status wefm_face_clear_edge_nodes(wefm_face* face) {
+  WEFM_REQUIRE(face, "wefm_face_clear_edge_nodes");
+  return guarded(&face->last_error, [&] { face->face.clear_edge_nodes(); });
+}
+
+WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_options* options, wefm_domain_mesh** out) {
+  WEFM_REQUIRE(face, "wefm_face_mesh_domain");
+  WEFM_REQUIRE(options, "wefm_face_mesh_domain");
+  WEFM_REQUIRE(out, "wefm_face_mesh_domain");
+  *out = nullptr;
+  return guarded(&face->last_error, [&] {
+    wefm::capi::check_struct_size(options->struct_size, "wefm_mesh_options");
+    const wefm_mesh_options o = wefm::capi::read_versioned(options, default_mesh_options());
+    const wefm::FlattenResult& r = face->face.result();
+    auto dm = std::make_unique<wefm_domain_mesh>();
+    dm->mesh = wefm::meshing::mesh_domain(face->face.mesh(), face->face.topology(), r.uv, convert(o), face->face.edge_nodes());
+    *out = dm.release();
+  });
+}
+
+WEFM_API wefm_status wefm_domain_mesh_retain(wefm_domain_mesh* mesh) {
+  WEFM_REQUIRE(mesh, "wefm_domain_mesh_retain");
+  mesh->refs.fetch_add(1);
+  return WEFM_OK;
+}
+
+WEFM_API void wefm_domain_mesh_release(wefm_domain_mesh* mesh) {
+  if (mesh && mesh->refs.fetch_sub(1) == 1) delete mesh;
+}
+
+WEFM_API wefm_status wefm_domain_mesh_get_uv(const wefm_domain_mesh* mesh, double* uv, int64_t capacity, int64_t* count) {
+  WEFM_REQUIRE(mesh, "wefm_domain_mesh_get_uv");
+  WEFM_REQUIRE(count, "wefm_domain_mesh_get_uv");
+  return guarded(nullptr, [&] {
+    std::vector<double> v;
+    v.reserve(2 * mesh->mesh.uv.size());
+    for (const auto& p : mesh->mesh.uv) v.insert(v.end(), {p.x(), p.y()});
+    wefm::capi::copy_out(v, uv, capacity, count);
+  });
+}
+
+WEFM_API wefm_status wefm_domain_mesh_get_xyz(const wefm_domain_mesh* mesh, double* xyz, int64_t capacity, int64_t* count) {
+  WEFM_REQUIRE(mesh, "wefm_domain_mesh_get_xyz");
+  WEFM_REQUIRE(count, "wefm_domain_mesh_get_xyz");
+  return guarded(nullptr, [&] {
+    std::vector<double> v;
+    v.reserve(3 * mesh->mesh.xyz.size());
+    for (const auto& p : mesh->mesh.xyz) v.insert(v.end(), {p.x(), p.y(), p.z()});
+    wefm::capi::copy_out(v, xyz, capacity, count);
+  });
+}
+
+WEFM_API wefm_status wefm_domain_mesh_get_elements(const wefm_domain_mesh* mesh, int32_t* nodes, int64_t capacity, int64_t* count) {
+  WEFM_REQUIRE(mesh, "wefm_domain_mesh_get_elements");
+  WEFM_REQUIRE(count, "wefm_domain_mesh_get_elements");
+  return guarded(nullptr, [&] { wefm::capi::copy_out(mesh->mesh.elements, nodes, capacity, count); });
+}
+
+WEFM_API wefm_status wefm_domain_mesh_get_report(const wefm_domain_mesh* mesh, wefm_mesh_report* report) {
+  WEFM_REQUIRE(mesh, "wefm_domain_mesh_get_report");
+  WEFM_REQUIRE(report, "wefm_domain_mesh_get_report");
+  return guarded(nullptr, [&] {
+    wefm::capi::check_struct_size(report->struct_size, "wefm_mesh_report");
+    const wefm::meshing::MeshReport& s = mesh->mesh.report;
+    wefm_mesh_report r{};
+    r.struct_size = sizeof(r);
+    r.nodes = s.nodes;
+    r.elements = s.elements;
+    r.nodes_per_element = s.nodes_per_element;
+    r.lambda_mesh = s.lambda_mesh;
+    r.lambda_min = s.lambda_min;
+    r.fraction_below_0_6 = s.fraction_below_0_6;
+    r.scaled_jacobian_min = s.scaled_jacobian_min;
+    r.scaled_jacobian_mean = s.scaled_jacobian_mean;
+    r.wiggle_max = s.wiggle_max;
+    r.wiggle_mean = s.wiggle_mean;
+    r.time_boundary = s.time_boundary;
+    r.time_mesh = s.time_mesh;
+    r.time_smooth = s.time_smooth;
+    r.time_map = s.time_map;
+    wefm::capi::write_versioned(report, r);
+  });
+}
+
+WEFM_API wefm_status wefm_domain_mesh_write_obj(const wefm_domain_mesh* mesh, const char* path) {
+  WEFM_REQUIRE(mesh, "wefm_domain_mesh_write_obj");
+  WEFM_REQUIRE(path, "wefm_domain_mesh_write_obj");
+  return guarded(nullptr, [&] {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path, "w"), &std::fclose);
+    if (!f) throw wefm::Error(wefm::Errc::io, std::string("cannot write ") + path);
+    const auto& m = mesh->mesh;
+    std::fprintf(f.get(), "# wefm domain mesh: %zu nodes, %zu elements\n", m.xyz.size(), m.elements.size() / static_cast<size_t>(m.nodes_per_element));
+    for (const auto& p : m.xyz) std::fprintf(f.get(), "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+    for (const auto& p : m.uv) std::fprintf(f.get(), "vt %.17g %.17g\n", p.x(), p.y());
+    const size_t npe = static_cast<size_t>(m.nodes_per_element);
+    for (size_t e = 0; e < m.elements.size(); e += npe) {
+      std::fputc('f', f.get());
+      for (size_t k = 0; k < npe; ++k) std::fprintf(f.get(), " %d/%d", m.elements[e + k] + 1, m.elements[e + k] + 1);
+      std::fputc('\n', f.get());
+    }
+    if (std::ferror(f.get())) throw wefm::Error(wefm::Errc::io, std::string("error writing ") + path);
+  });
+}
+
+}
