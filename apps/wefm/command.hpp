@@ -18,5 +18,6 @@ Command flatten_command();
 Command info_command();
 Command batch_command();
 Command model_command();
+Command mesh_command();
 
 }  // namespace wefm_cli

@@ -9,6 +9,7 @@ const std::vector<Command>& commands() {
       info_command(),
       batch_command(),
       model_command(),
+      mesh_command(),
   };
   return table;
 }

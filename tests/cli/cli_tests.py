@@ -6,6 +6,7 @@ checks properties of what it wrote (counts, orientation, JSON fields, XML), not 
 Standard library only, so any python3 runs it.
 """
 import json
+import math
 import os
 import struct
 import subprocess
@@ -400,10 +401,60 @@ def case_not_converged(tmp):
     check(r["status"] == "not_converged" and r["converged"] is False and r["exit_code"] == 5, f"report {r['status']}")
 
 
+def read_faces(path):
+    """Vertices and face vertex lists (any arity) of an OBJ."""
+    V, F = [], []
+    with open(path) as f:
+        for line in f:
+            p = line.split()
+            if p and p[0] == "v":
+                V.append(tuple(map(float, p[1:4])))
+            elif p and p[0] == "f":
+                F.append([int(q.split("/")[0]) - 1 for q in p[1:]])
+    return V, F
+
+
+def case_mesh(tmp):
+    """wefm mesh: transfinite quads on a periodic cylinder strip, free triangles with report and SVG."""
+    V, T, seam, src, topo = cylinder_files(tmp, seam_mode="periodic")
+    out, rep = os.path.join(tmp, "cyl_mesh.obj"), os.path.join(tmp, "cyl_mesh.json")
+    chord = 2 * math.sin(math.pi / 12)
+    p = run("mesh", src, "--topology", topo, "--size", chord, "--type", "transfinite", "-o", out, "--report", rep, "--s", 0,
+            expect=0)
+    MV, MF = read_faces(out)
+    check(MF and all(len(f) == 4 for f in MF), "transfinite mesh must be quads")
+    check(len(MF) == 12 * 3, f"{len(MF)} quads, want 12 around x 3 along")
+    for x, y, z in MV:  # every node on the facetted cylinder: between the facets' inradius and 1
+        r = math.hypot(x, y)
+        check(math.cos(math.pi / 12) - 1e-9 <= r <= 1 + 1e-9 and -1e-9 <= z <= 1.5 + 1e-9, f"node off the surface {x, y, z}")
+    r = json.load(open(rep))
+    m = r["mesh"]
+    check(r["type"] == "transfinite" and m["nodes_per_element"] == 4 and m["elements"] == len(MF), f"report {m}")
+    check(m["wiggle_max"] < 1e-6 and m["scaled_jacobian_min"] > 0.99, f"wiggle/Jacobian {m}")
+    check("wiggle" in p.stdout and "quads" in p.stdout, f"summary: {p.stdout}")
+    DV, DF = read_faces(os.path.join(tmp, "cyl_mesh.domain.obj"))
+    check(len(DV) == len(MV) and DF == MF and all(v[2] == 0 for v in DV), "domain mesh mismatches the 3D mesh")
+    # Free meshing of a curved patch, with the picture.
+    PV, PT = meshes.patch(9, 7)
+    psrc, pout, prep, psvg = (os.path.join(tmp, n) for n in ("patch.obj", "patch_mesh.obj", "patch.json", "patch.svg"))
+    meshes.write_obj(psrc, PV, PT)
+    run("mesh", psrc, "--size", 0.05, "-o", pout, "--report", prep, "--svg", psvg, "-q", expect=0)
+    m = json.load(open(prep))["mesh"]
+    _, F = read_faces(pout)
+    check(m["nodes_per_element"] == 3 and m["elements"] == len(F) and all(len(f) == 3 for f in F), f"free mesh {m}")
+    check(m["lambda_min"] >= 0.5 and m["lambda_mesh"] >= 0.9, f"free mesh quality {m}")
+    polys = ET.parse(psvg).getroot().findall(f"{SVG_NS}polygon")
+    check(len(polys) == len(F), f"svg has {len(polys)} polygons for {len(F)} triangles")
+    # Usage errors.
+    run("mesh", psrc, "-o", pout, expect=2)  # no --size
+    run("mesh", psrc, "--size", 0.1, "--type", "paved", "-o", pout, expect=2)
+    run("mesh", psrc, "--size", 0.1, "--type", "transfinite", "--corners", "1,2,3", "-o", pout, expect=2)
+
+
 CASES = {f"format_{fmt}": (lambda tmp, fmt=fmt: case_format(fmt, tmp)) for fmt in meshes.WRITERS}
 CASES.update(info=case_info, batch=case_batch, usage=case_usage, unreadable=case_unreadable, topology=case_topology,
              topology_bad=case_topology_bad, write_topology=case_write_topology, progress_quiet=case_progress_quiet,
-             png=case_png, not_converged=case_not_converged)
+             png=case_png, not_converged=case_not_converged, mesh=case_mesh)
 
 
 def main():

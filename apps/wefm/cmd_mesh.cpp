@@ -1,0 +1,382 @@
+// wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite] [options]: flatten, mesh the domain,
+// write the 3D mesh (OBJ, quads as four-vertex faces), its 2D domain mesh and the quality report.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "command.hpp"
+#include "exit_codes.hpp"
+#include "flatten_settings.hpp"
+#include "output_paths.hpp"
+#include "progress.hpp"
+#include "seams_file.hpp"
+#include "topology_file.hpp"
+
+namespace wefm_cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct FaceDeleter {
+  void operator()(wefm_face* f) const { wefm_face_release(f); }
+};
+struct MeshDeleter {
+  void operator()(wefm_mesh* m) const { wefm_mesh_release(m); }
+};
+struct DomainMeshDeleter {
+  void operator()(wefm_domain_mesh* m) const { wefm_domain_mesh_release(m); }
+};
+
+std::vector<OptionSpec> mesh_specs() {
+  std::vector<OptionSpec> specs = {
+      {"output", 'o', "MESH.obj", "3D mesh to write: v (3D), vt (UV), f (triangles or quads) (required)", "", false},
+      {"size", 0, "H", "target 3D element size (required)", "", false},
+      {"type", 0, "free|transfinite", "free triangles, or a transfinite (mapped) mesh on four corners", "free", false},
+      {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
+       false},
+      {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
+      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves", "5", false},
+      {"min-angle", 0, "DEG", "free: Delaunay refinement angle bound in UV", "28", false},
+      {"corner-angle", 0, "DEG", "loop vertices turning more than this stay boundary nodes", "30", false},
+      {"max-elements", 0, "N", "fail rather than exceed this many elements (0 = no cap)", "0", false},
+      {"domain-obj", 0, "FILE.obj", "2D domain mesh to write (v u v 0); default MESH.domain.obj", "", false},
+      {"seams", 0, "FILE", "facet edges to cut along: two 0-based vertex indices per line, # comments", "", false},
+      {"topology", 0, "FILE.json", "face topology: edges, loops, outer_loop, per-edge mode (topo.json schema)", "",
+       false},
+      {"report", 0, "FILE.json", "write the JSON mesh report (quality, counts, times)", "", false},
+      {"svg", 0, "FILE.svg", "picture of the 2D domain mesh, elements coloured by Lo's lambda in 3D", "", false},
+      {"quiet", 'q', "", "no summary; errors still go to stderr", "", false},
+  };
+  for (auto& s : solver_option_specs()) specs.push_back(s);
+  return specs;
+}
+
+void print_help() {
+  std::printf(
+      "Usage: wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite] [options]\n\n"
+      "Flattens one face (as wefm flatten, with the same options), meshes the 2D domain at the 3D size H\n"
+      "and maps the mesh back to 3D. Free meshes are triangles (constrained Delaunay + refinement +\n"
+      "smoothing judged in 3D); transfinite meshes are quads on four corners (a periodic strip counts).\n\n"
+      "Options:\n%s\n%s",
+      format_options(mesh_specs()).c_str(), exit_codes_help());
+}
+
+std::string default_domain_path(const std::string& obj) {
+  const size_t dot = obj.rfind('.'), slash = obj.find_last_of("/\\");
+  const std::string stem = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? obj.substr(0, dot) : obj;
+  return stem + ".domain.obj";
+}
+
+template <class T, class Getter>
+bool fetch(std::vector<T>& out, Getter get) {
+  int64_t n = 0;
+  if (get(nullptr, 0, &n) != WEFM_OK) return false;
+  out.assign(static_cast<size_t>(n), T{});
+  return n == 0 || get(out.data(), n, &n) == WEFM_OK;
+}
+
+struct MeshArrays {
+  std::vector<double> uv, xyz;
+  std::vector<int32_t> elements;
+  int npe = 3;
+};
+
+double lo_lambda(const double* a, const double* b, const double* c) {
+  double e1[3], e2[3], e3[3];
+  for (int k = 0; k < 3; ++k) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], e3[k] = c[k] - b[k];
+  const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+  const double area = 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
+  double s = 0;
+  for (int k = 0; k < 3; ++k) s += e1[k] * e1[k] + e2[k] * e2[k] + e3[k] * e3[k];
+  return s > 0 ? 4 * std::sqrt(3.0) * area / s : 0;
+}
+
+bool write_domain_obj(const std::string& path, const MeshArrays& m) {
+  std::ofstream f(path);
+  if (!f) return false;
+  f.precision(17);
+  f << "# wefm 2D domain mesh: v u v 0\n";
+  for (size_t i = 0; i + 1 < m.uv.size(); i += 2) f << "v " << m.uv[i] << ' ' << m.uv[i + 1] << " 0\n";
+  for (size_t e = 0; e < m.elements.size(); e += static_cast<size_t>(m.npe)) {
+    f << 'f';
+    for (int k = 0; k < m.npe; ++k) f << ' ' << m.elements[e + static_cast<size_t>(k)] + 1;
+    f << '\n';
+  }
+  return static_cast<bool>(f);
+}
+
+// Elements coloured from red (lambda 0.6 or less) to green (1); quads by their worse half.
+bool write_mesh_svg(const std::string& path, const MeshArrays& m) {
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (size_t i = 0; i + 1 < m.uv.size(); i += 2)
+    for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], m.uv[i + static_cast<size_t>(k)]), hi[k] = std::max(hi[k], m.uv[i + static_cast<size_t>(k)]);
+  const double w = std::max(hi[0] - lo[0], 1e-300), h = std::max(hi[1] - lo[1], 1e-300), scale = 1000.0 / std::max(w, h);
+  std::ofstream f(path);
+  if (!f) return false;
+  f << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w * scale + 20 << "\" height=\"" << h * scale + 20 << "\">\n";
+  const size_t npe = static_cast<size_t>(m.npe);
+  for (size_t e = 0; e < m.elements.size(); e += npe) {
+    const int32_t* n = &m.elements[e];
+    auto X = [&](int k) { return &m.xyz[3 * static_cast<size_t>(n[k])]; };
+    double lam = lo_lambda(X(0), X(1), X(2));
+    if (npe == 4) lam = std::min(lam, lo_lambda(X(0), X(2), X(3)));
+    const double t = std::min(1.0, std::max(0.0, (lam - 0.6) / 0.4));
+    f << "<polygon fill=\"rgb(" << static_cast<int>(255 * (1 - t)) << ',' << static_cast<int>(200 * t + 55) << ",80)\" stroke=\"black\" stroke-width=\"0.3\" points=\"";
+    for (size_t k = 0; k < npe; ++k) {
+      const size_t v = static_cast<size_t>(n[k]);
+      f << 10 + (m.uv[2 * v] - lo[0]) * scale << ',' << 10 + (hi[1] - m.uv[2 * v + 1]) * scale << ' ';
+    }
+    f << "\"/>\n";
+  }
+  f << "</svg>\n";
+  return static_cast<bool>(f);
+}
+
+class MeshRun {
+ public:
+  explicit MeshRun(const FlattenSettings& s) : s_(s) {}
+  int code = kExitOk;
+  std::string error;
+
+  bool fail(int c, std::string m) {
+    code = c, error = std::move(m);
+    return false;
+  }
+  std::string face_error() const { return wefm_face_last_error(face_.get()); }
+
+  bool flatten(const std::string& input) {
+    wefm_mesh* rm = nullptr;
+    const wefm_status st = wefm_mesh_read(input.c_str(), 0.0, &rm);
+    mesh_.reset(rm);
+    if (st != WEFM_OK) return fail(st == WEFM_ERROR_INVALID_MESH ? kExitInvalid : kExitIo, "cannot read " + input + ": " + wefm_last_error());
+    wefm_face* rf = nullptr;
+    if (wefm_face_create(&rf) != WEFM_OK) return fail(kExitSolver, wefm_last_error());
+    face_.reset(rf);
+    if (wefm_face_set_mesh_from(rf, rm) != WEFM_OK) return fail(kExitInvalid, input + ": invalid mesh: " + face_error());
+    if (wefm_face_set_options(rf, &s_.options) != WEFM_OK) return fail(kExitUsage, "invalid option: " + face_error());
+    TopologyFile topo;
+    if (!s_.topology_path.empty()) {
+      if (const int c = read_topology_file(s_.topology_path, topo, error)) return fail(c, error);
+      for (const auto& chain : topo.chains) {
+        int32_t id = -1;
+        if (wefm_face_add_edge(rf, static_cast<int64_t>(chain.size()), chain.data(), &id) != WEFM_OK)
+          return fail(kExitInvalid, s_.topology_path + ": " + face_error());
+      }
+      for (size_t l = 0; l < topo.loop_edges.size(); ++l) {
+        int32_t id = -1;
+        if (wefm_face_add_loop(rf, static_cast<int64_t>(topo.loop_edges[l].size()), topo.loop_edges[l].data(), topo.loop_reversed[l].data(), &id) != WEFM_OK)
+          return fail(kExitInvalid, s_.topology_path + ": loop " + std::to_string(l) + ": " + face_error());
+      }
+    }
+    if (!s_.seams_path.empty()) {
+      std::vector<int32_t> pairs;
+      if (const int c = read_seams_file(s_.seams_path, pairs, error)) return fail(c, error);
+      if (!pairs.empty() && wefm_face_add_seams(rf, static_cast<int64_t>(pairs.size() / 2), pairs.data()) != WEFM_OK)
+        return fail(kExitInvalid, s_.seams_path + ": " + face_error());
+    }
+    const int outer = s_.has_outer_loop ? s_.outer_loop : topo.outer_loop;
+    if (outer >= 0 && wefm_face_set_outer_loop(rf, outer) != WEFM_OK) return fail(kExitInvalid, "outer loop: " + face_error());
+    if (wefm_face_build(rf) != WEFM_OK) return fail(kExitInvalid, input + ": invalid topology: " + face_error());
+    for (size_t k = 0; k < topo.modes.size(); ++k)
+      if (topo.modes[k] >= 0 && wefm_face_set_edge_mode(rf, static_cast<int32_t>(k), topo.modes[k]) != WEFM_OK)
+        return fail(kExitInvalid, s_.topology_path + ": mode: " + face_error());
+    for (const auto& [edge, mode] : s_.edge_modes) {
+      const long long index = s_.topology_path.empty() ? edge : topo.index_of(edge);
+      if (index < 0 || index > 2147483647LL || wefm_face_set_edge_mode(rf, static_cast<int32_t>(index), mode) != WEFM_OK)
+        return fail(kExitUsage, "--edge-mode-of " + std::to_string(edge) + ": " + face_error());
+    }
+    const auto t0 = Clock::now();
+    wefm_status ss;
+    {
+      CancelWatcher watcher;
+      WatchedFace watched(&watcher, rf);
+      ss = wefm_face_solve(rf);
+    }
+    time_solve = since(t0);
+    if (ss == WEFM_ERROR_CANCELLED || (ss != WEFM_OK && interrupted())) return fail(kExitCancelled, input + ": cancelled");
+    int32_t has = 0;
+    wefm_face_has_result(rf, &has);
+    if (ss != WEFM_OK && !(ss == WEFM_ERROR_NOT_CONVERGED && has))
+      return fail(kExitSolver, input + ": solve failed: " + face_error() + " [" + wefm_status_string(ss) + "]");
+    if (ss == WEFM_ERROR_NOT_CONVERGED) warning = input + ": not converged: " + face_error() + " (meshing the best result)";
+    wefm_report_init(&flatten_report, sizeof flatten_report);
+    wefm_face_get_report(rf, &flatten_report);
+    return true;
+  }
+
+  bool mesh(const wefm_mesh_options& o) {
+    wefm_domain_mesh* raw = nullptr;
+    if (wefm_face_mesh_domain(face_.get(), &o, &raw) != WEFM_OK) {
+      const std::string m = face_error();
+      return fail(m.find("unsupported") != std::string::npos || m.find("needs a face") != std::string::npos ? kExitInvalid : kExitUsage,
+                  "meshing failed: " + m);
+    }
+    dm_.reset(raw);
+    wefm_mesh_report_init(&report, sizeof report);
+    wefm_domain_mesh_get_report(raw, &report);
+    arrays.npe = report.nodes_per_element;
+    const bool ok = fetch(arrays.uv, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_uv(raw, b, c, n); }) &&
+                    fetch(arrays.xyz, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_xyz(raw, b, c, n); }) &&
+                    fetch(arrays.elements, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_elements(raw, b, c, n); });
+    return ok || fail(kExitSolver, "reading the mesh: " + std::string(wefm_last_error()));
+  }
+
+  const wefm_domain_mesh* domain_mesh() const { return dm_.get(); }
+
+  double time_solve = 0;
+  std::string warning;
+  wefm_report flatten_report{};
+  wefm_mesh_report report{};
+  MeshArrays arrays;
+
+ private:
+  const FlattenSettings& s_;
+  std::unique_ptr<wefm_mesh, MeshDeleter> mesh_;
+  std::unique_ptr<wefm_face, FaceDeleter> face_;
+  std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm_;
+};
+
+bool parse_mesh_options(const ParsedArgs& args, wefm_mesh_options& o, std::string& error) {
+  wefm_mesh_options_init(&o, sizeof o);
+  auto dbl = [&](const char* name, double& out) {
+    if (!args.has(name) || parse_double(args.value(name), out)) return true;
+    error = std::string("--") + name + ": expected a number, got '" + args.value(name) + "'";
+    return false;
+  };
+  auto integer = [&](const char* name, long long& out) {
+    if (!args.has(name) || parse_int(args.value(name), out)) return true;
+    error = std::string("--") + name + ": expected an integer, got '" + args.value(name) + "'";
+    return false;
+  };
+  long long smoothing = o.smoothing_iterations, cap = o.max_elements;
+  if (!dbl("size", o.size) || !dbl("min-angle", o.min_angle_deg) || !dbl("corner-angle", o.corner_angle_deg) ||
+      !integer("smoothing", smoothing) || !integer("max-elements", cap))
+    return false;
+  o.smoothing_iterations = static_cast<int>(smoothing);
+  o.max_elements = cap;
+  if (args.has("type")) {
+    const std::string& t = args.value("type");
+    if (t == "free") o.type = WEFM_MESH_FREE;
+    else if (t == "transfinite") o.type = WEFM_MESH_TRANSFINITE;
+    else return error = "--type: expected free or transfinite, got '" + t + "'", false;
+  }
+  if (args.has("corners")) {
+    std::stringstream ss(args.value("corners"));
+    std::string item;
+    int k = 0;
+    long long v = 0;
+    while (std::getline(ss, item, ',')) {
+      if (k >= 4 || !parse_int(item, v) || v < 0 || v > 2147483647LL)
+        return error = "--corners: expected four vertex uses U0,U1,U2,U3, got '" + args.value("corners") + "'", false;
+      o.corners[k++] = static_cast<int32_t>(v);
+    }
+    if (k != 4) return error = "--corners: expected four vertex uses U0,U1,U2,U3, got '" + args.value("corners") + "'", false;
+  }
+  o.quads = args.has("triangles") ? 0 : 1;
+  return true;
+}
+
+int run_mesh(const std::vector<std::string>& argv) {
+  const auto specs = mesh_specs();
+  ParsedArgs args;
+  std::string error;
+  FlattenSettings s;
+  wefm_mesh_options mo{};
+  if (!parse_args(argv, specs, args, error) ||
+      (!args.help && (!apply_solver_options(args, s, error) || !parse_mesh_options(args, mo, error)))) {
+    std::fprintf(stderr, "wefm mesh: %s (see wefm mesh --help)\n", error.c_str());
+    return kExitUsage;
+  }
+  if (args.help) {
+    print_help();
+    return kExitOk;
+  }
+  if (args.positionals.size() != 1 || !args.has("output") || !args.has("size")) {
+    std::fprintf(stderr, "wefm mesh: %s (usage: wefm mesh INPUT --size H -o MESH.obj)\n",
+                 args.positionals.size() != 1 ? "expected one INPUT" : !args.has("output") ? "missing -o MESH.obj" : "missing --size H");
+    return kExitUsage;
+  }
+  if (args.has("seams") && args.has("topology")) {
+    std::fprintf(stderr, "wefm mesh: --seams and --topology exclude each other: put seam edges in the topology\n");
+    return kExitUsage;
+  }
+  auto opt = [&](const char* name) { return args.has(name) ? args.value(name) : std::string(); };
+  s.seams_path = opt("seams");
+  s.topology_path = opt("topology");
+  const std::string input = args.positionals[0], out = args.value("output");
+  const std::string domain = args.has("domain-obj") ? args.value("domain-obj") : default_domain_path(out);
+  const std::string report_path = opt("report"), svg = opt("svg");
+  for (const std::string* p : {&out, &domain, &report_path, &svg})
+    if (!p->empty() && !make_parent_dirs(*p, error)) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      return kExitIo;
+    }
+  install_interrupt_handler();
+  MeshRun run(s);
+  const auto t0 = Clock::now();
+  if (!run.flatten(input) || !run.mesh(mo)) {
+    std::fprintf(stderr, "wefm: %s\n", run.error.c_str());
+    return run.code;
+  }
+  const double t_mesh = since(t0) - run.time_solve;
+  if (wefm_domain_mesh_write_obj(run.domain_mesh(), out.c_str()) != WEFM_OK) {
+    std::fprintf(stderr, "wefm: cannot write %s: %s\n", out.c_str(), wefm_last_error());
+    return kExitIo;
+  }
+  if (!write_domain_obj(domain, run.arrays)) {
+    std::fprintf(stderr, "wefm: cannot write %s\n", domain.c_str());
+    return kExitIo;
+  }
+  if (!svg.empty() && !write_mesh_svg(svg, run.arrays)) {
+    std::fprintf(stderr, "wefm: cannot write %s\n", svg.c_str());
+    return kExitIo;
+  }
+  const wefm_mesh_report& r = run.report;
+  if (!report_path.empty()) {
+    nlohmann::json j;
+    j["input"] = input;
+    j["type"] = mo.type == WEFM_MESH_TRANSFINITE ? "transfinite" : "free";
+    j["size"] = mo.size;
+    j["flatten"] = {{"s", s.options.s}, {"boundary_weight", s.options.boundary_weight}, {"score", run.flatten_report.score},
+                    {"converged", run.flatten_report.converged != 0}, {"time", run.time_solve}};
+    j["mesh"] = {{"nodes", r.nodes}, {"elements", r.elements}, {"nodes_per_element", r.nodes_per_element},
+                 {"lambda_mesh", r.lambda_mesh}, {"lambda_min", r.lambda_min}, {"fraction_below_0_6", r.fraction_below_0_6},
+                 {"scaled_jacobian_min", r.scaled_jacobian_min}, {"scaled_jacobian_mean", r.scaled_jacobian_mean},
+                 {"wiggle_max", r.wiggle_max}, {"wiggle_mean", r.wiggle_mean},
+                 {"time", {{"boundary", r.time_boundary}, {"mesh", r.time_mesh}, {"smooth", r.time_smooth}, {"map", r.time_map}, {"total", t_mesh}}}};
+    j["outputs"] = {{"mesh", out}, {"domain_mesh", domain}};
+    if (!svg.empty()) j["outputs"]["svg"] = svg;
+    if (!run.warning.empty()) j["warning"] = run.warning;
+    std::ofstream f(report_path);
+    f << j.dump(2) << '\n';
+    if (!f) {
+      std::fprintf(stderr, "wefm: cannot write %s\n", report_path.c_str());
+      return kExitIo;
+    }
+  }
+  if (!args.has("quiet")) {
+    std::printf("%s: %lld %s, %lld nodes; lambda_mesh %.4f, min %.4f, below 0.6 %.2f%%", input.c_str(), static_cast<long long>(r.elements),
+                r.nodes_per_element == 4 ? "quads" : "triangles", static_cast<long long>(r.nodes), r.lambda_mesh, r.lambda_min,
+                100 * r.fraction_below_0_6);
+    if (r.nodes_per_element == 4) std::printf("; scaled Jacobian min %.4f", r.scaled_jacobian_min);
+    if (mo.type == WEFM_MESH_TRANSFINITE) std::printf("; wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
+    std::printf("\n");
+  }
+  if (!run.warning.empty()) {
+    std::fprintf(stderr, "wefm: warning: %s\n", run.warning.c_str());
+    return kExitSolver;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+Command mesh_command() { return {"mesh", "flatten one face, mesh the domain (free or transfinite), write the 3D mesh", run_mesh}; }
+
+}  // namespace wefm_cli
