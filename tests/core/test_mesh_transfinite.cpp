@@ -31,16 +31,14 @@ TEST_CASE("a cut cylinder with a periodic seam meshed transfinite gives wiggle b
   CHECK(dm.report.wiggle_max < 1e-6);
   CHECK(dm.report.scaled_jacobian_min > 0.999);
   CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
-  // The seam's two sides are opposite rails of the grid (which pair depends on the first corner):
+  // The seam's two sides are opposite sides of the grid (which pair depends on the first corner):
   // node by node the same 3D points.
-  const auto& r = dm.rails;
-  const size_t rows = r.back().size();  // rows first (one per column node), then columns
-  auto same = [&](const std::vector<Index>& a, const std::vector<Index>& b) {
-    double d = 0;
-    for (size_t k = 0; k < a.size(); ++k) d = std::max(d, (dm.xyz[static_cast<size_t>(a[k])] - dm.xyz[static_cast<size_t>(b[k])]).norm());
-    return d;
-  };
-  CHECK(std::min(same(r[0], r[rows - 1]), same(r[rows], r.back())) < 1e-12);
+  const size_t cols = static_cast<size_t>(dm.grid_columns), rows = dm.xyz.size() / cols;
+  double first_last_row = 0, first_last_col = 0;
+  for (size_t i = 0; i < cols; ++i) first_last_row = std::max(first_last_row, (dm.xyz[i] - dm.xyz[(rows - 1) * cols + i]).norm());
+  for (size_t j = 0; j < rows; ++j) first_last_col = std::max(first_last_col, (dm.xyz[j * cols] - dm.xyz[j * cols + cols - 1]).norm());
+  CHECK(std::min(first_last_row, first_last_col) < 1e-12);
+  CHECK(dm.rails.size() == (rows - 2) + (cols - 2));
 }
 
 TEST_CASE("transfinite meshing splits quads into triangles on request and honours given corners") {

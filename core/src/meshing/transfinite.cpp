@@ -92,6 +92,7 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
       const Vec3 g = (X(i + 1, j) - X(i - 1, j)).cross(X(i, j + 1) - X(i, j - 1));
       if (g.norm() > 0) out.normal[static_cast<size_t>(id(i, j))] = g.normalized();
     }
+  out.grid_columns = n + 1;
   out.boundary_nodes = 0;  // grid numbering: boundary nodes are the grid's rim, not a prefix
   out.nodes_per_element = o.quads ? 4 : 3;
   for (Index j = 0; j < m; ++j)
@@ -106,12 +107,14 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
         out.elements.insert(out.elements.end(), {a, b, d, b, cc, d});
       }
     }
-  for (Index j = 0; j <= m; ++j) {
+  // Interior rail lines only: the boundary ones are the boundary discretisation, the same 3D
+  // points whatever the domain, so they would only blur the comparison of domains.
+  for (Index j = 1; j < m; ++j) {
     std::vector<Index> row;
     for (Index i = 0; i <= n; ++i) row.push_back(id(i, j));
     out.rails.push_back(std::move(row));
   }
-  for (Index i = 0; i <= n; ++i) {
+  for (Index i = 1; i < n; ++i) {
     std::vector<Index> col;
     for (Index j = 0; j <= m; ++j) col.push_back(id(i, j));
     out.rails.push_back(std::move(col));

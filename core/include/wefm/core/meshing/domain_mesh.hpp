@@ -15,7 +15,10 @@ struct DomainMesh {
   std::vector<Vec3> normal;
   int nodes_per_element = 3;
   std::vector<Index> elements;  // nodes_per_element per element, counter-clockwise in UV
-  std::vector<std::vector<Index>> rails;  // transfinite grid lines (rows then columns), else empty
+  // Transfinite: interior grid lines (rows j = 1..m-1 over i, then columns i = 1..n-1 over j) in the
+  // grid numbering j * (n + 1) + i; empty for free meshes.
+  std::vector<std::vector<Index>> rails;
+  Index grid_columns = 0;  // transfinite: n + 1
   Index boundary_nodes = 0;                // nodes 0..boundary_nodes-1 lie on the loops
   MeshReport report;
 };
