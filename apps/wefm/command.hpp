@@ -19,5 +19,6 @@ Command info_command();
 Command batch_command();
 Command model_command();
 Command mesh_command();
+Command mesh_model_command();
 
 }  // namespace wefm_cli

@@ -10,6 +10,7 @@ const std::vector<Command>& commands() {
       batch_command(),
       model_command(),
       mesh_command(),
+      mesh_model_command(),
   };
   return table;
 }

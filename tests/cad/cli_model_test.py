@@ -7,6 +7,32 @@ import sys
 import tempfile
 
 
+def check_mesh_model(wefm, model, tmp):
+    """wefm mesh-model: the closed cylinder solid gives one closed manifold mesh (every edge used by exactly
+    two triangles), in OBJ and in MSH 4.1 with one physical group per face."""
+    from collections import Counter
+    obj, msh, rep = (os.path.join(tmp, n) for n in ("cyl.obj", "cyl.msh", "cyl_mesh.json"))
+    for out in (obj, msh):
+        p = subprocess.run([wefm, "mesh-model", model, "--size", "2", "-o", out, "--report", rep, "-q"],
+                           capture_output=True, text=True)
+        assert p.returncode == 0, f"mesh-model exit {p.returncode}: {p.stderr}"
+    F = [tuple(int(x) - 1 for x in l.split()[1:4]) for l in open(obj) if l.startswith("f ")]
+    V = [l for l in open(obj) if l.startswith("v ")]
+    uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for t in F for i in range(3))
+    assert set(uses.values()) == {2}, f"not conforming: edge use counts {Counter(uses.values())}"
+    assert len(V) - len(uses) + len(F) == 2, "a closed cylinder mesh is a sphere topologically"
+    r = json.load(open(rep))
+    assert r["conformity"]["open_edges"] == 0 and r["conformity"]["non_manifold_edges"] == 0, r["conformity"]
+    assert r["triangles"] == len(F) and r["lambda_min"] >= 0.5, r
+    assert [f["status"] for f in r["faces"]] == ["ok"] * 3, r["faces"]
+    text = open(msh).read()
+    assert text.startswith("$MeshFormat\n4.1 0 8\n"), text[:40]
+    names = text.split("$PhysicalNames\n")[1].split("$EndPhysicalNames")[0].split("\n")
+    assert names[0] == "3" and all('"face_' in n for n in names[1:4]), names
+    elements = text.split("$Elements\n")[1].split("\n")[0].split()
+    assert int(elements[1]) == len(F), elements
+
+
 def main():
     wefm, model = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as tmp:
@@ -39,6 +65,7 @@ def main():
         assert abs(json.load(open(rep))["score"] - cyl["score"]) < 1e-9
         svg = open(atlas).read()
         assert svg.count("<polygon") == sum(f["triangles"] for f in faces), "atlas: one polygon per triangle"
+        check_mesh_model(wefm, model, tmp)
         # A missing model is an I/O error naming the file.
         p = subprocess.run([wefm, "model", os.path.join(tmp, "nope.step"), "-o", out], capture_output=True, text=True)
         assert p.returncode == 3 and "nope.step" in p.stderr, (p.returncode, p.stderr)

@@ -1,0 +1,22 @@
+#pragma once
+// The first step of whole-model meshing (the paper's §1.2): every model edge is discretised once in
+// 3D, so the faces sharing it get the very same nodes and the face meshes conform. Nodes are placed
+// at equal arc length along the edge's facet chain, so they lie on the chain as
+// wefm_face_set_edge_nodes requires; the chain is the same polyline in every face that uses the edge
+// (BRepMesh discretises an edge once for the whole model).
+#include <map>
+#include <vector>
+
+#include "cad_model.hpp"
+
+namespace wefm_cad {
+
+struct EdgeNodes {
+  std::vector<double> xyz;  // 3 per node, in the edge's direction, both end vertices included
+};
+
+// Per model edge id: its nodes at target size h (at least one segment; at least three for a closed
+// edge, so a circle stays a polygon). Degenerate edges get no entry.
+std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h);
+
+}  // namespace wefm_cad

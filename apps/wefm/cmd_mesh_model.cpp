@@ -1,0 +1,382 @@
+// wefm mesh-model MODEL.step --size h -o model.msh|model.obj [-j N] [flatten options]
+//
+// The paper's whole-model pipeline (§1.2): every model edge is discretised once in 3D at size h
+// (cad_edge_nodes), each face is flattened, gets those nodes on its edges (wefm_face_set_edge_nodes),
+// is meshed in its domain and mapped back (wefm_face_mesh_domain); the face meshes are welded along
+// their shared edge nodes into one conforming surface mesh (model_mesh).
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "command.hpp"
+#include "exit_codes.hpp"
+
+#ifdef WEFM_CLI_HAVE_OCCT
+#include "cad_edge_nodes.hpp"
+#include "cad_model.hpp"
+#include "cad_wefm.hpp"
+#include "flatten_settings.hpp"
+#include "model_mesh.hpp"
+#include "output_paths.hpp"
+#include "progress.hpp"
+#endif
+
+namespace wefm_cli {
+
+namespace {
+
+#ifdef WEFM_CLI_HAVE_OCCT
+
+using Json = nlohmann::ordered_json;
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<OptionSpec> mesh_model_specs() {
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const wefm_cad::TessellationSettings d;
+  wefm_mesh_options m;
+  wefm_mesh_options_init(&m, sizeof m);
+  char defl[32], ang[32], smooth[16];
+  std::snprintf(defl, sizeof defl, "%g", d.relative_deflection);
+  std::snprintf(ang, sizeof ang, "%g", d.angular_deflection);
+  std::snprintf(smooth, sizeof smooth, "%d", m.smoothing_iterations);
+  std::vector<OptionSpec> specs = {
+      {"output", 'o', "FILE.msh|FILE.obj", "the whole-model mesh: Gmsh MSH 4.1 ASCII or OBJ (required)", "", false},
+      {"size", 0, "H", "target element size in model units (required unless --size-ratio)", "", false},
+      {"size-ratio", 0, "R", "target size as a fraction of the bounding-box diagonal (e.g. 0.025 = 1/40)", "", false},
+      {"jobs", 'j', "N", "faces meshed at the same time, one thread and one handle each", std::to_string(hw), false},
+      {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
+      {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
+      {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; repeatable)", "", true},
+      {"smoothing", 0, "N", "UV smoothing passes of free meshes", smooth, false},
+      {"report", 0, "FILE.json", "quality report per face and overall", "", false},
+      {"quiet", 'q', "", "no per-face progress lines", "", false},
+  };
+  for (auto& s : solver_option_specs())
+    if (s.name != "edge-mode-of") specs.push_back(s);
+  return specs;
+}
+
+void print_help() {
+  std::printf(
+      "Usage: wefm mesh-model MODEL.step|.iges|.brep (--size H | --size-ratio R) -o FILE.msh|FILE.obj [options]\n\n"
+      "Meshes a whole CAD model the paper's way: every model edge is discretised once in 3D at size H, so\n"
+      "the faces sharing it get the same nodes; each face is flattened, meshed in its domain (free, or\n"
+      "transfinite for the faces named with --transfinite) and mapped back; the face meshes are welded into\n"
+      "one conforming surface mesh. Writes Gmsh MSH 4.1 ASCII (a physical group per face) or OBJ (a group\n"
+      "per face); prints Lo's lambda per face and overall and the conformity count.\n\nOptions:\n%s\n%s",
+      format_options(mesh_model_specs()).c_str(), exit_codes_help());
+}
+
+struct FaceMeshRun {
+  const wefm_cad::CadFace* face = nullptr;
+  int exit_code = kExitOk;
+  std::string status = "ok", reason;
+  std::vector<double> xyz;
+  std::vector<int32_t> tris;
+  wefm_mesh_report report{};
+  double time_solve = 0, time_mesh = 0;
+  double score = NAN;
+  int64_t flips = 0;
+};
+
+struct FaceDeleter {
+  void operator()(wefm_face* f) const { wefm_face_release(f); }
+};
+struct DomainMeshDeleter {
+  void operator()(wefm_domain_mesh* m) const { wefm_domain_mesh_release(m); }
+};
+
+template <class T, class G>
+wefm_status fetch(std::vector<T>& out, G get) {
+  int64_t n = 0;
+  wefm_status st = get(nullptr, 0, &n);
+  if (st != WEFM_OK) return st;
+  out.assign(static_cast<size_t>(n), T{});
+  return n == 0 ? WEFM_OK : get(out.data(), n, &n);
+}
+
+void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_mesh_options& mesh_options,
+                   const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, CancelWatcher& watcher) {
+  auto fail = [&](int code, const std::string& why) {
+    r.exit_code = code;
+    r.status = "failed";
+    r.reason = why;
+  };
+  if (!r.face->error.empty()) return fail(kExitInvalid, "import: " + r.face->error);
+  wefm_face* raw = nullptr;
+  if (wefm_face_create(&raw) != WEFM_OK) return fail(kExitSolver, wefm_last_error());
+  std::unique_ptr<wefm_face, FaceDeleter> face(raw);
+  std::string error;
+  if (wefm_cad::set_face_from_cad(raw, *r.face, error) != WEFM_OK) return fail(kExitInvalid, error);
+  if (wefm_face_set_options(raw, &settings.options) != WEFM_OK) return fail(kExitUsage, wefm_face_last_error(raw));
+  if (wefm_face_build(raw) != WEFM_OK) return fail(kExitInvalid, std::string("topology: ") + wefm_face_last_error(raw));
+  const auto t0 = Clock::now();
+  wefm_status st;
+  {
+    WatchedFace watched(&watcher, raw);
+    st = wefm_face_solve(raw);
+  }
+  r.time_solve = since(t0);
+  int32_t has = 0;
+  wefm_face_has_result(raw, &has);
+  if (st != WEFM_OK && !(st == WEFM_ERROR_NOT_CONVERGED && has))
+    return fail(st == WEFM_ERROR_CANCELLED ? kExitCancelled : kExitSolver,
+                std::string("flatten: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
+  wefm_report rep;
+  wefm_report_init(&rep, sizeof rep);
+  if (wefm_face_get_report(raw, &rep) == WEFM_OK) {
+    r.score = rep.score;
+    r.flips = rep.flipped_triangles;
+  }
+  if (st == WEFM_ERROR_NOT_CONVERGED) {
+    r.status = "not_converged";
+    r.reason = std::string("flatten: ") + wefm_face_last_error(raw);
+  }
+  for (size_t k = 0; k < r.face->edges.size(); ++k) {
+    const auto it = edge_nodes.find(r.face->edges[k].id);
+    if (it == edge_nodes.end()) continue;  // degenerate: a point
+    const auto& xyz = it->second.xyz;
+    if (wefm_face_set_edge_nodes(raw, static_cast<int32_t>(k), static_cast<int64_t>(xyz.size() / 3), xyz.data()) != WEFM_OK)
+      return fail(kExitInvalid, "edge id " + std::to_string(r.face->edges[k].id) + " nodes: " + wefm_face_last_error(raw));
+  }
+  const auto t1 = Clock::now();
+  wefm_domain_mesh* dm_raw = nullptr;
+  st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+  std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
+  r.time_mesh = since(t1);
+  if (st != WEFM_OK || !dm_raw)
+    return fail(st == WEFM_ERROR_CANCELLED ? kExitCancelled : kExitSolver,
+                std::string("mesh: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
+  wefm_mesh_report_init(&r.report, sizeof r.report);
+  wefm_domain_mesh_get_report(dm_raw, &r.report);
+  std::vector<int32_t> elements;
+  if (fetch(r.xyz, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_xyz(dm_raw, b, c, n); }) != WEFM_OK ||
+      fetch(elements, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_elements(dm_raw, b, c, n); }) != WEFM_OK)
+    return fail(kExitSolver, std::string("mesh: reading the result: ") + wefm_face_last_error(raw));
+  if (r.report.nodes_per_element == 4) {
+    // Quads (transfinite): split along the shorter diagonal so the model mesh is all triangles.
+    for (size_t q = 0; q + 3 < elements.size(); q += 4) {
+      const int32_t a = elements[q], b = elements[q + 1], c = elements[q + 2], d = elements[q + 3];
+      auto dist2 = [&](int32_t i, int32_t j) {
+        double s = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double x = r.xyz[3 * static_cast<size_t>(i) + static_cast<size_t>(k)] - r.xyz[3 * static_cast<size_t>(j) + static_cast<size_t>(k)];
+          s += x * x;
+        }
+        return s;
+      };
+      if (dist2(a, c) <= dist2(b, d)) r.tris.insert(r.tris.end(), {a, b, c, a, c, d});
+      else r.tris.insert(r.tris.end(), {a, b, d, b, c, d});
+    }
+  } else {
+    r.tris = std::move(elements);
+  }
+}
+
+int run_mesh_model(const std::vector<std::string>& argv) {
+  const auto specs = mesh_model_specs();
+  ParsedArgs args;
+  std::string error;
+  FlattenSettings settings;
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, settings, error))) {
+    std::fprintf(stderr, "wefm mesh-model: %s (see wefm mesh-model --help)\n", error.c_str());
+    return kExitUsage;
+  }
+  if (args.help) {
+    print_help();
+    return kExitOk;
+  }
+  if (args.positionals.size() != 1 || !args.has("output") || args.has("size") == args.has("size-ratio")) {
+    std::fprintf(stderr, "wefm mesh-model: expected one MODEL, -o FILE and one of --size or --size-ratio (see --help)\n");
+    return kExitUsage;
+  }
+  const std::string out_path = args.value("output");
+  const std::string ext = std::filesystem::path(out_path).extension().string();
+  if (ext != ".msh" && ext != ".obj") {
+    std::fprintf(stderr, "wefm mesh-model: -o: expected a .msh or .obj file, got '%s'\n", out_path.c_str());
+    return kExitUsage;
+  }
+  double size = 0;
+  const char* size_opt = args.has("size") ? "size" : "size-ratio";
+  if (!parse_double(args.value(size_opt), size) || !(size > 0)) {
+    std::fprintf(stderr, "wefm mesh-model: --%s: expected a number > 0\n", size_opt);
+    return kExitUsage;
+  }
+  long long jobs = std::max(1u, std::thread::hardware_concurrency()), smoothing = -1;
+  if (args.has("jobs") && (!parse_int(args.value("jobs"), jobs) || jobs < 1 || jobs > 1024)) {
+    std::fprintf(stderr, "wefm mesh-model: -j: expected a thread count >= 1\n");
+    return kExitUsage;
+  }
+  if (args.has("smoothing") && (!parse_int(args.value("smoothing"), smoothing) || smoothing < 0)) {
+    std::fprintf(stderr, "wefm mesh-model: --smoothing: expected a count >= 0\n");
+    return kExitUsage;
+  }
+  wefm_cad::TessellationSettings tess;
+  for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &tess.relative_deflection},
+                             std::pair<const char*, double*>{"angular-deflection", &tess.angular_deflection}}) {
+    if (args.has(name) && (!parse_double(args.value(name), *field) || !(*field > 0))) {
+      std::fprintf(stderr, "wefm mesh-model: --%s: expected a number > 0\n", name);
+      return kExitUsage;
+    }
+  }
+  std::set<long long> transfinite;
+  if (args.has("transfinite"))
+    for (const std::string& v : args.values.at("transfinite")) {
+      long long k = 0;
+      if (!parse_int(v, k) || k < 1) {
+        std::fprintf(stderr, "wefm mesh-model: --transfinite: expected a face number >= 1, got '%s'\n", v.c_str());
+        return kExitUsage;
+      }
+      transfinite.insert(k);
+    }
+  const bool quiet = args.has("quiet");
+  const std::string model_path = args.positionals[0];
+  const auto t_start = Clock::now();
+
+  wefm_cad::CadModel model;
+  if (!wefm_cad::load_cad_model(model_path, tess, model, error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return kExitIo;
+  }
+  if (args.has("size-ratio")) size *= model.bbox_diagonal;
+  const auto t_edges = Clock::now();
+  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size);
+  const double time_edges = since(t_edges);
+
+  wefm_mesh_options free_options, tf_options;
+  wefm_mesh_options_init(&free_options, sizeof free_options);
+  free_options.size = size;
+  if (smoothing >= 0) free_options.smoothing_iterations = static_cast<int>(smoothing);
+  tf_options = free_options;
+  tf_options.type = WEFM_MESH_TRANSFINITE;
+  tf_options.quads = 1;
+
+  install_interrupt_handler();
+  CancelWatcher watcher;
+  std::vector<FaceMeshRun> runs(model.faces.size());
+  for (size_t i = 0; i < runs.size(); ++i) runs[i].face = &model.faces[i];
+  std::atomic<size_t> next{0}, finished{0};
+  std::mutex print_mutex;
+  const auto t_faces = Clock::now();
+  auto worker = [&] {
+    for (size_t i; !interrupted() && (i = next++) < runs.size();) {
+      FaceMeshRun& r = runs[i];
+      mesh_one_face(r, settings, transfinite.count(r.face->index) ? tf_options : free_options, edge_nodes, watcher);
+      const size_t done = ++finished;
+      if (!quiet) {
+        std::lock_guard<std::mutex> lock(print_mutex);
+        std::fprintf(stderr, "[%zu/%zu] f%03d %s: %s (%.2f s)\n", done, runs.size(), r.face->index,
+                     r.face->surface_type.c_str(), r.status.c_str(), r.time_solve + r.time_mesh);
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), std::max<size_t>(1, runs.size()));
+  for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  const double time_faces = since(t_faces);
+
+  // Weld at a tolerance far below the size and the facet lengths, far above rounding.
+  ModelMesh whole(1e-7 * model.bbox_diagonal);
+  int64_t collapsed = 0;
+  for (const FaceMeshRun& r : runs)
+    if (!r.tris.empty()) collapsed += whole.add_face(r.face->index, r.xyz, r.tris);
+  const ConformityCounts conf = whole.conformity();
+  const LambdaStats q = whole.lambda();
+  int exit_code = kExitOk;
+  if (!make_parent_dirs(out_path, error) ||
+      !(ext == ".msh" ? whole.write_msh(out_path, error) : whole.write_obj(out_path, error))) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    exit_code = kExitIo;
+  }
+  const double time_total = since(t_start);
+
+  std::printf("%-6s %-10s %8s %9s %8s %8s %9s %8s  %s\n", "face", "surface", "elements", "lambda", "min", "<0.6", "score",
+              "time", "status");
+  int failed = 0;
+  for (const FaceMeshRun& r : runs) {
+    const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
+    std::printf("f%03d   %-10s %8lld %9.4f %8.4f %7.1f%% %9.4f %7.2fs  %s\n", r.face->index, r.face->surface_type.c_str(),
+                static_cast<long long>(fq.triangles), fq.lambda_mesh, fq.lambda_min, 100 * fq.fraction_below_0_6, r.score,
+                r.time_solve + r.time_mesh, r.status.c_str());
+    if (r.status == "failed") ++failed;
+    exit_code = std::max(exit_code, r.exit_code);
+  }
+  std::printf("model: %lld nodes, %lld triangles, lambda_mesh %.4f, min lambda %.4f, %.1f%% below 0.6; %lld edges, "
+              "%lld open, %lld non-manifold; %d faces failed; %.2f s (read %.2f, BRepMesh %.2f, edges %.3f, faces %.2f with -j %zu)\n",
+              static_cast<long long>(whole.nodes()), static_cast<long long>(whole.triangles()), q.lambda_mesh, q.lambda_min,
+              100 * q.fraction_below_0_6, static_cast<long long>(conf.edges), static_cast<long long>(conf.open_edges),
+              static_cast<long long>(conf.non_manifold_edges), failed, time_total, model.time_read, model.time_mesh, time_edges,
+              time_faces, n_threads);
+  for (const FaceMeshRun& r : runs)
+    if (!r.reason.empty())
+      std::fprintf(stderr, "wefm: %s face %d (%s): %s\n", model_path.c_str(), r.face->index, r.face->surface_type.c_str(),
+                   r.reason.c_str());
+
+  if (args.has("report")) {
+    Json rep;
+    rep["model"] = model_path;
+    rep["size"] = size;
+    rep["output"] = out_path;
+    rep["nodes"] = whole.nodes();
+    rep["triangles"] = whole.triangles();
+    rep["lambda_mesh"] = q.lambda_mesh;
+    rep["lambda_min"] = q.lambda_min;
+    rep["fraction_below_0_6"] = q.fraction_below_0_6;
+    rep["conformity"] = {{"edges", conf.edges}, {"open_edges", conf.open_edges}, {"non_manifold_edges", conf.non_manifold_edges},
+                         {"collapsed_triangles", collapsed}};
+    rep["timings"] = {{"total", time_total}, {"read", model.time_read}, {"brepmesh", model.time_mesh},
+                      {"import", model.time_extract}, {"edges", time_edges}, {"faces_wall", time_faces}, {"jobs", n_threads}};
+    Json faces = Json::array();
+    for (const FaceMeshRun& r : runs) {
+      const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
+      faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
+                       {"reason", r.reason}, {"elements", fq.triangles},
+                       {"type", transfinite.count(r.face->index) ? "transfinite" : "free"},
+                       {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},
+                       {"lambda_min", fq.triangles ? Json(fq.lambda_min) : Json(nullptr)},
+                       {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
+                       {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
+                       {"flatten_flips", r.flips},
+                       {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
+    }
+    rep["faces"] = faces;
+    const std::string path = args.value("report");
+    std::ofstream f(path);
+    if (f) f << rep.dump(1) << '\n';
+    if (!f) {
+      std::fprintf(stderr, "wefm: cannot write %s\n", path.c_str());
+      exit_code = std::max<int>(exit_code, kExitIo);
+    }
+  }
+  if (interrupted()) exit_code = kExitCancelled;
+  return exit_code;
+}
+
+#else  // built without Open CASCADE
+
+int run_mesh_model(const std::vector<std::string>&) {
+  std::fprintf(stderr, "wefm mesh-model: this wefm was built without CAD import (WEFM_WITH_OCCT=OFF)\n");
+  return kExitIo;
+}
+
+#endif
+
+}  // namespace
+
+Command mesh_model_command() {
+  return {"mesh-model", "mesh a whole CAD model into one conforming surface mesh (MSH or OBJ)", run_mesh_model};
+}
+
+}  // namespace wefm_cli

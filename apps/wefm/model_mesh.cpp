@@ -1,0 +1,214 @@
+#include "model_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+namespace wefm_cli {
+
+namespace {
+
+uint64_t cell_key(int64_t i, int64_t j, int64_t k) {
+  // Mixes three cell coordinates into one key; collisions only cost a distance test.
+  return static_cast<uint64_t>(i) * 73856093ULL ^ static_cast<uint64_t>(j) * 19349663ULL ^
+         static_cast<uint64_t>(k) * 83492791ULL;
+}
+
+uint64_t pair_key(int32_t a, int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
+
+// Lo's quality: 4 sqrt(3) area / sum of squared edge lengths (1 for an equilateral triangle).
+double lo_lambda(const double* a, const double* b, const double* c) {
+  double e1[3], e2[3], e3[3];
+  for (int i = 0; i < 3; ++i) {
+    e1[i] = b[i] - a[i];
+    e2[i] = c[i] - a[i];
+    e3[i] = c[i] - b[i];
+  }
+  const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
+  const double area = 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
+  double sq = 0;
+  for (int i = 0; i < 3; ++i) sq += e1[i] * e1[i] + e2[i] * e2[i] + e3[i] * e3[i];
+  return sq > 0 ? 4.0 * std::sqrt(3.0) * area / sq : 0.0;
+}
+
+}  // namespace
+
+int32_t ModelMesh::weld(const double* p, int face_tag) {
+  const int64_t ci = static_cast<int64_t>(std::floor(p[0] / tol_)), cj = static_cast<int64_t>(std::floor(p[1] / tol_)),
+                ck = static_cast<int64_t>(std::floor(p[2] / tol_));
+  for (int64_t di = -1; di <= 1; ++di)
+    for (int64_t dj = -1; dj <= 1; ++dj)
+      for (int64_t dk = -1; dk <= 1; ++dk) {
+        auto range = grid_.equal_range(cell_key(ci + di, cj + dj, ck + dk));
+        for (auto it = range.first; it != range.second; ++it) {
+          const double* q = &xyz_[3 * static_cast<size_t>(it->second)];
+          if (std::fabs(p[0] - q[0]) <= tol_ && std::fabs(p[1] - q[1]) <= tol_ && std::fabs(p[2] - q[2]) <= tol_)
+            return it->second;
+        }
+      }
+  const int32_t id = static_cast<int32_t>(xyz_.size() / 3);
+  xyz_.insert(xyz_.end(), p, p + 3);
+  node_face_.push_back(face_tag);
+  grid_.emplace(cell_key(ci, cj, ck), id);
+  return id;
+}
+
+int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
+  face_tags_.push_back(face_tag);
+  // Boundary nodes of this face's mesh: on an edge used by one of its triangles.
+  std::unordered_map<uint64_t, int> uses;
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) ++uses[pair_key(triangles[t + static_cast<size_t>(c)], triangles[t + static_cast<size_t>((c + 1) % 3)])];
+  std::vector<char> boundary(xyz.size() / 3, 0);
+  for (const auto& [key, n] : uses)
+    if (n == 1) boundary[key >> 32] = boundary[key & 0xffffffffULL] = 1;
+  std::vector<int32_t> global(xyz.size() / 3);
+  for (size_t v = 0; v < global.size(); ++v) {
+    if (boundary[v]) {
+      global[v] = weld(&xyz[3 * v], face_tag);
+    } else {
+      global[v] = static_cast<int32_t>(xyz_.size() / 3);
+      xyz_.insert(xyz_.end(), &xyz[3 * v], &xyz[3 * v] + 3);
+      node_face_.push_back(face_tag);
+    }
+  }
+  int64_t dropped = 0;
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const int32_t a = global[static_cast<size_t>(triangles[t])], b = global[static_cast<size_t>(triangles[t + 1])],
+                  c = global[static_cast<size_t>(triangles[t + 2])];
+    if (a == b || b == c || a == c) {
+      ++dropped;
+      continue;
+    }
+    tris_.insert(tris_.end(), {a, b, c});
+    tri_face_.push_back(face_tag);
+  }
+  return dropped;
+}
+
+ConformityCounts ModelMesh::conformity() const {
+  std::unordered_map<uint64_t, int> uses;
+  for (size_t t = 0; t + 2 < tris_.size(); t += 3)
+    for (int c = 0; c < 3; ++c) ++uses[pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])];
+  ConformityCounts out;
+  out.edges = static_cast<int64_t>(uses.size());
+  for (const auto& [key, n] : uses) {
+    (void)key;
+    out.open_edges += n == 1;
+    out.non_manifold_edges += n > 2;
+  }
+  return out;
+}
+
+LambdaStats ModelMesh::lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
+  LambdaStats s;
+  double log_sum = 0;
+  int64_t below = 0;
+  s.lambda_min = 1;
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const double l = lo_lambda(&xyz[3 * static_cast<size_t>(triangles[t])], &xyz[3 * static_cast<size_t>(triangles[t + 1])],
+                               &xyz[3 * static_cast<size_t>(triangles[t + 2])]);
+    log_sum += std::log(std::max(l, 1e-300));
+    s.lambda_min = std::min(s.lambda_min, l);
+    below += l < 0.6;
+    ++s.triangles;
+  }
+  if (s.triangles) {
+    s.lambda_mesh = std::exp(log_sum / static_cast<double>(s.triangles));
+    s.fraction_below_0_6 = static_cast<double>(below) / static_cast<double>(s.triangles);
+  } else {
+    s.lambda_min = 0;
+  }
+  return s;
+}
+
+LambdaStats ModelMesh::lambda() const { return lambda_of(xyz_, tris_); }
+
+bool ModelMesh::write_msh(const std::string& path, std::string& error) const {
+  std::ofstream out(path);
+  if (!out) {
+    error = "cannot write " + path;
+    return false;
+  }
+  char buf[256];
+  out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << face_tags_.size() << '\n';
+  for (int f : face_tags_) out << "2 " << f << " \"face_" << f << "\"\n";
+  out << "$EndPhysicalNames\n$Entities\n0 0 " << face_tags_.size() << " 0\n";
+  std::map<int, std::array<double, 6>> box;
+  for (size_t v = 0; v < node_face_.size(); ++v) {
+    auto it = box.find(node_face_[v]);
+    if (it == box.end()) it = box.emplace(node_face_[v], std::array<double, 6>{1e300, 1e300, 1e300, -1e300, -1e300, -1e300}).first;
+    for (int c = 0; c < 3; ++c) {
+      it->second[static_cast<size_t>(c)] = std::min(it->second[static_cast<size_t>(c)], xyz_[3 * v + static_cast<size_t>(c)]);
+      it->second[static_cast<size_t>(c) + 3] = std::max(it->second[static_cast<size_t>(c) + 3], xyz_[3 * v + static_cast<size_t>(c)]);
+    }
+  }
+  for (int f : face_tags_) {
+    std::array<double, 6> b{0, 0, 0, 0, 0, 0};
+    if (box.count(f)) b = box.at(f);
+    std::snprintf(buf, sizeof buf, "%d %.17g %.17g %.17g %.17g %.17g %.17g 1 %d 0\n", f, b[0], b[1], b[2], b[3], b[4], b[5], f);
+    out << buf;
+  }
+  out << "$EndEntities\n$Nodes\n";
+  std::map<int, std::vector<int32_t>> nodes_of;
+  for (size_t v = 0; v < node_face_.size(); ++v) nodes_of[node_face_[v]].push_back(static_cast<int32_t>(v));
+  out << nodes_of.size() << ' ' << nodes() << " 1 " << nodes() << '\n';
+  for (const auto& [f, vs] : nodes_of) {
+    out << "2 " << f << " 0 " << vs.size() << '\n';
+    for (int32_t v : vs) out << v + 1 << '\n';
+    for (int32_t v : vs) {
+      std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", xyz_[3 * static_cast<size_t>(v)], xyz_[3 * static_cast<size_t>(v) + 1],
+                    xyz_[3 * static_cast<size_t>(v) + 2]);
+      out << buf;
+    }
+  }
+  out << "$EndNodes\n$Elements\n";
+  std::map<int, std::vector<size_t>> tris_of;
+  for (size_t t = 0; t < tri_face_.size(); ++t) tris_of[tri_face_[t]].push_back(t);
+  out << tris_of.size() << ' ' << triangles() << " 1 " << triangles() << '\n';
+  for (const auto& [f, ts] : tris_of) {
+    out << "2 " << f << " 2 " << ts.size() << '\n';
+    for (size_t t : ts) out << t + 1 << ' ' << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';
+  }
+  out << "$EndElements\n";
+  out.flush();
+  if (!out) {
+    error = "cannot write " + path;
+    return false;
+  }
+  return true;
+}
+
+bool ModelMesh::write_obj(const std::string& path, std::string& error) const {
+  std::ofstream out(path);
+  if (!out) {
+    error = "cannot write " + path;
+    return false;
+  }
+  char buf[96];
+  for (size_t v = 0; v + 2 < xyz_.size(); v += 3) {
+    std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", xyz_[v], xyz_[v + 1], xyz_[v + 2]);
+    out << buf;
+  }
+  int current = -1;
+  for (size_t t = 0; t < tri_face_.size(); ++t) {
+    if (tri_face_[t] != current) {
+      current = tri_face_[t];
+      out << "g face_" << current << '\n';
+    }
+    out << "f " << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';
+  }
+  out.flush();
+  if (!out) {
+    error = "cannot write " + path;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace wefm_cli

@@ -1,0 +1,60 @@
+#pragma once
+// `wefm mesh-model`: the per-face domain meshes assembled into one surface mesh. Nodes on the
+// boundary of a face mesh (model edges, seams, poles) are welded to the nodes at the same 3D point
+// that other faces, or the other side of a seam, already contributed: the edge nodes were given to
+// every face identically (cad_edge_nodes), so matching nodes coincide. Interior nodes are never
+// welded, so two faces that merely come close are not stitched together.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace wefm_cli {
+
+struct ConformityCounts {
+  int64_t edges = 0;
+  int64_t open_edges = 0;          // used by one triangle: the model's free edges, or a gap
+  int64_t non_manifold_edges = 0;  // used by more than two
+};
+
+struct LambdaStats {
+  double lambda_mesh = 0;          // geometric mean of Lo's lambda
+  double lambda_min = 0;
+  double fraction_below_0_6 = 0;
+  int64_t triangles = 0;
+};
+
+class ModelMesh {
+ public:
+  explicit ModelMesh(double weld_tolerance) : tol_(weld_tolerance) {}
+
+  // Adds one face's mesh (3 doubles per node, 3 node indices per triangle). Returns the number of
+  // triangles dropped because welding collapsed them (at a pole).
+  int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
+
+  ConformityCounts conformity() const;
+  LambdaStats lambda() const;
+  static LambdaStats lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
+
+  // Gmsh MSH 4.1 ASCII, one surface entity and physical group ("face_N") per face; OBJ with one group
+  // per face. Both return false + message when the file cannot be written.
+  bool write_msh(const std::string& path, std::string& error) const;
+  bool write_obj(const std::string& path, std::string& error) const;
+
+  int64_t nodes() const { return static_cast<int64_t>(xyz_.size() / 3); }
+  int64_t triangles() const { return static_cast<int64_t>(tris_.size() / 3); }
+
+ private:
+  int32_t weld(const double* p, int face_tag);
+
+  double tol_;
+  std::vector<double> xyz_;
+  std::vector<int> node_face_;          // face that first contributed the node (its MSH entity)
+  std::vector<int32_t> tris_;
+  std::vector<int> tri_face_;
+  std::vector<int> face_tags_;          // in order of addition
+  std::unordered_multimap<uint64_t, int32_t> grid_;  // welded boundary nodes by grid cell
+};
+
+}  // namespace wefm_cli
