@@ -111,3 +111,19 @@ TEST_CASE("refinement keeps the triangulation constrained Delaunay and meets the
   CHECK(tr.valid());
   CHECK(tr.node_count() > 100);
 }
+
+TEST_CASE("a boundary that touches itself is refused with invalid_state, not a crash") {
+  // Two squares sharing a corner node (a figure eight): the node appears twice.
+  const std::vector<P2> pts = {P2(0, 0), P2(1, 0), P2(1, 1), P2(0, 1), P2(1, 1), P2(2, 1), P2(2, 2), P2(1, 2)};
+  const std::vector<std::array<Index, 2>> segs = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}};
+  try {
+    meshing::Triangulation tr(pts, segs);
+    FAIL("accepted a self-touching boundary");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::invalid_state);
+  }
+  // A node lying inside another boundary segment.
+  const std::vector<P2> pts2 = {P2(0, 0), P2(2, 0), P2(2, 2), P2(0, 2), P2(1, 0), P2(1, 1)};
+  const std::vector<std::array<Index, 2>> segs2 = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 4}};
+  CHECK_THROWS_AS(meshing::Triangulation(pts2, segs2), Error);
+}

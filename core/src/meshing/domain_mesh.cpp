@@ -8,6 +8,7 @@
 #include "wefm/core/meshing/free_mesh.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
 #include "wefm/core/meshing/transfinite.hpp"
+#include "wefm/core/quality.hpp"
 
 namespace wefm::meshing {
 
@@ -23,6 +24,11 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
   for (size_t t = 0; t < mesh.triangles.size(); ++t) area += triangle_area(mesh, static_cast<Index>(t));
   const double estimate = 2.5 * area / (0.433 * o.size * o.size);
   if (estimate > 2e8) fail(Errc::invalid_argument, "mesh size " + std::to_string(o.size) + " would give about " + std::to_string(static_cast<std::int64_t>(estimate)) + " elements");
+
+  // A self-intersecting domain boundary maps some UV points to two places: no mesh of it is valid.
+  if (const std::int64_t crossings = count_boundary_intersections(topo, uv); crossings > 0)
+    fail(Errc::invalid_state, "the domain's boundary intersects itself (" + std::to_string(crossings) +
+                                  " crossings): solve with other options or seams before meshing");
 
   DomainMesh out;
   const SurfaceMap map(mesh, topo, uv);

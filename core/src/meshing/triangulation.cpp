@@ -59,7 +59,7 @@ Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<st
   new_tri(0, 1, 2);
   for (size_t k = 0; k < points.size(); ++k)
     if (insert(points[k], last_) < 0)
-      fail(Errc::internal, "boundary node " + std::to_string(k) + " coincides with another node: the domain boundary touches itself");
+      fail(Errc::invalid_state, "boundary node " + std::to_string(k) + " coincides with another node: the domain boundary touches itself");
   for (const auto& s : segments) recover(s[0] + kSuper, s[1] + kSuper);
   // Lawson flips restore the constrained Delaunay property after the recovery flips.
   std::deque<std::pair<Index, int>> q;
@@ -248,7 +248,7 @@ void Triangulation::recover(Index a, Index b) {
   };
   if (constrain()) return;
   auto fail_on = [&](Index w) {
-    fail(Errc::internal, "boundary node " + std::to_string(w - kSuper) + " lies on the boundary segment (" + std::to_string(a - kSuper) + ", " +
+    fail(Errc::invalid_state, "boundary node " + std::to_string(w - kSuper) + " lies on the boundary segment (" + std::to_string(a - kSuper) + ", " +
                              std::to_string(b - kSuper) + "): the domain boundary touches itself");
   };
   const P2 &pa = pts_[a], &pb = pts_[b];

@@ -14,8 +14,9 @@ namespace wefm::meshing {
 
 class Triangulation {
  public:
-  // Boundary nodes and the segments joining them (closed loops). Throws Error(internal) if a
-  // segment cannot be recovered (a node lying on another segment: a self-touching domain).
+  // Boundary nodes and the segments joining them (closed loops). Throws Error(invalid_state) when
+  // the boundary touches itself (two nodes at one point, a node on another segment) and
+  // Error(internal) if a segment still cannot be recovered.
   Triangulation(const std::vector<P2>& points, const std::vector<std::array<Index, 2>>& segments);
 
   // Node numbers are the caller's: 0..points.size()-1 the boundary, then inserted nodes. `hint`
