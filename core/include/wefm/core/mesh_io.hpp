@@ -8,11 +8,13 @@ namespace wefm {
 
 struct ReadResult {
   TriMesh mesh;
-  std::int64_t merged_vertices = 0;  // STL: corners merged into shared vertices beyond exact matches
+  std::int64_t merged_vertices = 0;  // STL: corners merged into an earlier vertex (exact or within tolerance)
 };
 
-// OBJ (own parser, fast), STL ascii/binary (own parser, so merging is counted exactly), OFF and PLY
-// (OpenMesh). Polygons are fan-triangulated. Throws Error(io) or Error(unsupported).
+// Own parsers for every format, so coordinates stay double (OpenMesh's OFF/PLY readers go through
+// float) and a million-triangle file reads in a fraction of a second: OBJ, STL ascii/binary (corners
+// merged, count exact), OFF (ASCII), PLY (ASCII and binary). Polygons are fan-triangulated.
+// Throws Error(io) naming the file and line or element, or Error(unsupported).
 ReadResult read_mesh(const std::string& path, double merge_tolerance);
 
 // OBJ with v (3D), vt (UV per use) and f v/vt.
