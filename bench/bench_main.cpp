@@ -2,12 +2,14 @@
 // faces, as JSON and Markdown. See docs/PERFORMANCE.md for what the columns mean.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "case_runner.hpp"
@@ -23,7 +25,7 @@ namespace {
 const char* kUsage =
     "usage: wefm-bench [options]                 run the benchmark (each case in a fresh process)\n"
     "       wefm-bench --generate SHAPE SIZE -o FILE.obj   write a benchmark face\n"
-    "       wefm-bench --table-from RESULTS.json [--markdown FILE]   tables from earlier results\n"
+    "       wefm-bench --table-from A.json[,B.json...] [--json FILE] [--markdown FILE]   merge earlier results\n"
     "\n"
     "  --shapes LIST     disk,plate (default both)\n"
     "  --sizes LIST      triangle counts, e.g. 10k,100k,1M (default 10k,100k,1M)\n"
@@ -34,7 +36,7 @@ const char* kUsage =
     "  --cli PATH|none   wefm executable for the whole-process run (default: the build tree's apps/wefm)\n"
     "  --cli-s LIST      s values of the whole-process run (default 0), at the largest size\n"
     "  --cgal PATH|none  CGAL peer executable (default: wefm-bench-cgal next to this program, if built)\n"
-    "  --no-floor        skip the Laplacian floor;  --no-read: skip the OBJ reading case\n"
+    "  --no-floor        skip the Laplacian floor;  --no-io: skip the file reading/writing case\n"
     "  --work DIR        scratch directory for OBJ files (default /tmp)\n"
     "  --json FILE       results (default bench-results.json);  --markdown FILE (default bench-results.md)\n";
 
@@ -89,7 +91,7 @@ int run_case(const std::vector<std::string>& a) {
   if (a[0] == "wefm" && a.size() == 5) j = run_wefm_case(shape, size, number_arg(a[3]), static_cast<int>(number_arg(a[4])));
   else if (a[0] == "floor") j = run_floor_case(shape, size, false);
   else if (a[0] == "floor_complex") j = run_floor_case(shape, size, true);
-  else if (a[0] == "read" && a.size() == 4) j = run_read_case(shape, size, a[3]);
+  else if (a[0] == "io" && a.size() == 4) j = run_io_case(shape, size, a[3]);
   else usage_error("unknown case '" + a[0] + "'");
   std::printf("%s\n", j.dump().c_str());
   return 0;
@@ -103,7 +105,7 @@ struct Settings {
   double timeout = 1200;
   int threads = 0;
   std::string cli, cgal, work = "/tmp", json = "bench-results.json", markdown = "bench-results.md";
-  bool floor = true, read = true;
+  bool floor = true, io = true;
 };
 
 void save(const Json& results, const Settings& st) {
@@ -184,7 +186,9 @@ int run_benchmark(const Settings& st, const std::string& command) {
     std::string what;
     for (size_t k = 1; k < argv.size(); ++k) what += (k > 1 ? " " : "") + argv[k];
     std::fprintf(stderr, "  %-40s", what.c_str());
+    const double load = load_average();
     Json j = child_case(argv, st, header);
+    j["load_before"] = load;
     std::fprintf(stderr, " %8.2f s  %6.0f MB  %s\n", j["wall"].get<double>(), j["max_rss_mb"].get<double>(),
                  j.value("status", j.value("error", "")).c_str());
     results["cases"].push_back(j);
@@ -199,7 +203,7 @@ int run_benchmark(const Settings& st, const std::string& command) {
         run({self, "--case", "floor", sh, sz}, header("floor"));
         run({self, "--case", "floor_complex", sh, sz}, header("floor_complex"));
       }
-      if (st.read) run({self, "--case", "read", sh, sz, st.work}, header("read"));
+      if (st.io) run({self, "--case", "io", sh, sz, st.work}, header("io"));
       if (!st.cgal.empty()) run({st.cgal, "--case", sh, sz}, header("cgal"));
       for (double s : st.s) {
         char sbuf[32];
@@ -267,7 +271,7 @@ int main(int argc, char** argv) {
     else if (o == "--cli") cli = value();
     else if (o == "--cgal") cgal = value();
     else if (o == "--no-floor") st.floor = false;
-    else if (o == "--no-read") st.read = false;
+    else if (o == "--no-io") st.io = false;
     else if (o == "--work") st.work = value();
     else if (o == "--json") st.json = value();
     else if (o == "--markdown") st.markdown = value();
@@ -285,11 +289,41 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (!table_from.empty()) {
-    std::ifstream in(table_from);
-    if (!in) usage_error("cannot read " + table_from);
-    Json results = Json::parse(in);
+    // Several result files (comma-separated) merge into one table; a case run again in a later
+    // file replaces the earlier one, so a slow case can be re-measured alone.
+    Json results;
+    for (const std::string& file : split(table_from)) {
+      std::ifstream in(file);
+      if (!in) usage_error("cannot read " + file);
+      Json part = Json::parse(in);
+      if (results.is_null()) {
+        results = part;
+        continue;
+      }
+      results["command"] = results.value("command", "") + "` and `" + part.value("command", "");
+      results["load_end"] = part["load_end"];
+      for (const char* list : {"cases", "cli"})
+        for (const Json& c : part[list]) {
+          Json& all = results[list];
+          for (size_t k = 0; k < all.size(); ++k)
+            if (all[k].value("kind", "") == c.value("kind", "") && all[k].value("shape", "") == c.value("shape", "") &&
+                all[k].value("size", "") == c.value("size", "") && all[k].value("s", -1.0) == c.value("s", -1.0)) {
+              all.erase(k);
+              break;
+            }
+          all.push_back(c);
+        }
+    }
+    for (const char* list : {"cases", "cli"}) {
+      Json& all = results[list];
+      std::stable_sort(all.begin(), all.end(), [](const Json& a, const Json& b) {
+        return std::make_tuple(a.value("shape", ""), a.value("triangles", 0.0), a.value("s", -1.0)) <
+               std::make_tuple(b.value("shape", ""), b.value("triangles", 0.0), b.value("s", -1.0));
+      });
+    }
     add_scaling_exponents(results);
     std::ofstream(st.markdown) << markdown_tables(results);
+    std::ofstream(st.json) << results.dump(1) << "\n";
     return 0;
   }
   const std::string dir = executable_dir();

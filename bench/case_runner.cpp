@@ -6,7 +6,11 @@
 #include <cstring>
 #include <map>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "laplacian_floor.hpp"
+#include "obj_output.hpp"
 #include "process_stats.hpp"
 #include "wefm/wefm.h"
 
@@ -28,22 +32,30 @@ Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 // Wall time spent in each progress stage: from the callback naming it to the next callback naming
 // another stage. Independent of the report's own timers, so it also shows what they leave out.
+// CPU time per stage too: on a shared machine the wall clock also counts waiting for a core.
 struct StageClock {
-  std::map<std::string, double> seconds;
+  std::map<std::string, double> seconds, cpu;
   std::string current;
-  double since = 0;
+  double since = 0, cpu_since = 0;
   static int callback(void* self, double, const char* stage) {
     auto* c = static_cast<StageClock*>(self);
-    const double t = now_seconds();
+    const double t = now_seconds(), tc = cpu_seconds();
     if (c->current != stage) {
-      if (!c->current.empty()) c->seconds[c->current] += t - c->since;
+      if (!c->current.empty()) {
+        c->seconds[c->current] += t - c->since;
+        c->cpu[c->current] += tc - c->cpu_since;
+      }
       c->current = stage;
       c->since = t;
+      c->cpu_since = tc;
     }
     return 0;
   }
   void finish() {
-    if (!current.empty() && current != "done") seconds[current] += now_seconds() - since;
+    if (!current.empty() && current != "done") {
+      seconds[current] += now_seconds() - since;
+      cpu[current] += cpu_seconds() - cpu_since;
+    }
     current.clear();
   }
 };
@@ -67,6 +79,7 @@ Json run_wefm_case(Shape shape, int64_t size, double s, int threads) {
   o.s = s;
   o.threads = threads;
   StageClock clock;
+  const double cpu0 = cpu_seconds();
   t = now_seconds();
   wefm_status st = wefm_face_set_mesh(face, f.vertices(), f.xyz.data(), f.triangles(), f.tri.data());
   const double t_set = now_seconds();
@@ -80,6 +93,7 @@ Json run_wefm_case(Shape shape, int64_t size, double s, int threads) {
     clock.finish();
   }
   const double t_solve = now_seconds();
+  j["cpu_library"] = cpu_seconds() - cpu0;
   j["status"] = wefm_status_string(st);
   if (st != WEFM_OK) j["message"] = wefm_face_last_error(face);
   j["time_set_mesh"] = t_set - t;
@@ -114,9 +128,11 @@ Json run_wefm_case(Shape shape, int64_t size, double s, int threads) {
                    {"time_total", r.time_total},
                    {"peak_memory_mb", r.peak_memory_mb}};
   }
-  Json stages = Json::object();
+  Json stages = Json::object(), stages_cpu = Json::object();
   for (const auto& [name, sec] : clock.seconds) stages[name] = sec;
+  for (const auto& [name, sec] : clock.cpu) stages_cpu[name] = sec;
   j["progress_stages"] = stages;
+  j["progress_stages_cpu"] = stages_cpu;
   wefm_face_release(face);
   j["peak_rss_mb"] = peak_rss_mb();
   return j;
@@ -126,7 +142,9 @@ Json run_floor_case(Shape shape, int64_t size, bool complex_arithmetic) {
   const Face f = generate(shape, size);
   Json j = face_header(complex_arithmetic ? "floor_complex" : "floor", shape, size, f);
   const double rss_before = current_rss_mb();
+  const double cpu0 = cpu_seconds();
   const FloorResult r = measure_floor(f, complex_arithmetic);
+  j["cpu_floor_with_assembly"] = cpu_seconds() - cpu0;
   j["status"] = r.ok ? "ok" : r.error;
   j["n"] = r.n;
   j["matrix_nnz"] = r.matrix_nnz;
@@ -138,35 +156,73 @@ Json run_floor_case(Shape shape, int64_t size, bool complex_arithmetic) {
   j["time_factorization"] = r.factorization;
   j["time_solve"] = r.solve;
   j["time_floor"] = r.total();
+  j["cpu_floor"] = r.cpu;
   j["rss_before_mb"] = rss_before;
   j["peak_rss_mb"] = peak_rss_mb();
   return j;
 }
 
-Json run_read_case(Shape shape, int64_t size, const std::string& work_dir) {
+Json run_io_case(Shape shape, int64_t size, const std::string& work_dir) {
   const Face f = generate(shape, size);
-  Json j = face_header("read", shape, size, f);
-  const std::string path = work_dir + "/" + shape_name(shape) + "_" + size_label(size) + ".obj";
-  double t = now_seconds();
-  if (!write_obj(path, f)) {
-    j["status"] = path + ": " + std::strerror(errno);
+  Json j = face_header("io", shape, size, f);
+  const std::string base = work_dir + "/wefm-bench-io-" + std::to_string(getpid()) + "-" + shape_name(shape) + "_" + size_label(size);
+  auto file_mb = [](const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 ? static_cast<double>(st.st_size) / (1024.0 * 1024.0) : 0.0;
+  };
+  // Wall and CPU time of one step; CPU time is what to compare on a busy machine.
+  auto timed = [&](const char* name, auto&& step) {
+    const double w = now_seconds(), c = cpu_seconds();
+    step();
+    j[std::string("time_") + name] = now_seconds() - w;
+    j[std::string("cpu_") + name] = cpu_seconds() - c;
+  };
+  const std::string obj = base + ".obj", stl = base + ".stl", uv = base + "_uv.obj";
+  bool ok = true;
+  timed("generator_write_obj", [&] { ok = ok && write_obj(obj, f); });
+  timed("generator_write_stl", [&] { ok = ok && write_stl(stl, f); });
+  if (!ok) {
+    j["status"] = "cannot write in " + work_dir + ": " + std::strerror(errno);
     return j;
   }
-  j["time_generator_write"] = now_seconds() - t;
-  std::FILE* file = std::fopen(path.c_str(), "rb");
-  if (file) {
-    std::fseek(file, 0, SEEK_END);
-    j["file_mb"] = static_cast<double>(std::ftell(file)) / (1024.0 * 1024.0);
-    std::fclose(file);
-  }
-  t = now_seconds();
+  j["obj_mb"] = file_mb(obj);
+  j["stl_mb"] = file_mb(stl);
+  std::string status = "ok";
   wefm_mesh* mesh = nullptr;
-  const wefm_status st = wefm_mesh_read(path.c_str(), 0.0, &mesh);
-  j["time_read"] = now_seconds() - t;
-  j["status"] = wefm_status_string(st);
-  if (st != WEFM_OK) j["message"] = wefm_last_error();
+  timed("read_obj", [&] {
+    if (wefm_mesh_read(obj.c_str(), 0.0, &mesh) != WEFM_OK) status = std::string("OBJ: ") + wefm_last_error();
+  });
   wefm_mesh_release(mesh);
-  std::remove(path.c_str());
+  mesh = nullptr;
+  timed("read_stl", [&] {
+    if (wefm_mesh_read(stl.c_str(), 0.0, &mesh) != WEFM_OK) status = std::string("STL: ") + wefm_last_error();
+  });
+  if (mesh) {
+    wefm_mesh_info info;
+    wefm_mesh_info_init(&info);
+    if (wefm_mesh_get_info(mesh, &info) == WEFM_OK) {
+      j["stl_vertices"] = info.vertices;
+      j["stl_merged_vertices"] = info.merged_vertices;
+    }
+  }
+  wefm_mesh_release(mesh);
+  // The tool's UV OBJ: one vt per vertex (a disk has one use per vertex), f v/vt.
+  wefm_cli::FaceSnapshot snap;
+  snap.xyz = f.xyz;
+  snap.tris = f.tri;
+  snap.tri_uses = f.tri;
+  snap.uv.resize(2 * static_cast<size_t>(f.vertices()));
+  for (size_t v = 0; v < static_cast<size_t>(f.vertices()); ++v) {
+    snap.uv[2 * v] = f.xyz[3 * v] * 1.0000001;
+    snap.uv[2 * v + 1] = f.xyz[3 * v + 1] * 0.9999999;
+  }
+  timed("write_uv_obj", [&] {
+    std::string error;
+    if (wefm_cli::write_uv_obj(uv, obj, snap, error) != 0) status = "UV OBJ: " + error;
+  });
+  j["uv_obj_mb"] = file_mb(uv);
+  j["status"] = status;
+  for (const std::string& p : {obj, stl, uv}) std::remove(p.c_str());
   j["peak_rss_mb"] = peak_rss_mb();
   return j;
 }

@@ -18,7 +18,8 @@ Json run_wefm_case(Shape shape, int64_t size, double s, int threads);
 // The cotangent-Laplacian floor (real, and complex when `complex_arithmetic`).
 Json run_floor_case(Shape shape, int64_t size, bool complex_arithmetic);
 
-// OBJ reading through wefm_mesh_read of the face written by the generator into `work_dir`.
-Json run_read_case(Shape shape, int64_t size, const std::string& work_dir);
+// File I/O on the face, in `work_dir` (page cache warm): OBJ and binary STL reading through
+// wefm_mesh_read, and the UV OBJ the `wefm` tool writes (its own writer, apps/wefm/obj_output.cpp).
+Json run_io_case(Shape shape, int64_t size, const std::string& work_dir);
 
 }  // namespace wefm_bench

@@ -61,8 +61,10 @@ int main(int argc, char** argv) {
   j["time_build"] = now_seconds() - t;
 
   t = now_seconds();
+  const double c0 = wefm_bench::cpu_seconds();
   const SMP::Error_code err = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), border, uv);
   j["time_parameterize"] = now_seconds() - t;
+  j["cpu_parameterize"] = wefm_bench::cpu_seconds() - c0;
   j["status"] = err == SMP::OK ? std::string("ok") : std::string("CGAL error: ") + SMP::get_error_message(err);
   j["peak_rss_mb"] = wefm_bench::peak_rss_mb();
   std::printf("%s\n", j.dump().c_str());

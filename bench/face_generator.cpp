@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 namespace wefm_bench {
@@ -193,6 +194,23 @@ bool write_obj(const std::string& path, const Face& face) {
   flush();
   if (std::fflush(file.get()) != 0) ok = false;
   return ok;
+}
+
+bool write_stl(const std::string& path, const Face& face) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), std::fclose);
+  if (!file) return false;
+  std::vector<char> out(84 + 50 * static_cast<size_t>(face.triangles()), 0);
+  const auto n = static_cast<std::uint32_t>(face.triangles());
+  std::memcpy(out.data() + 80, &n, 4);
+  for (int64_t t = 0; t < face.triangles(); ++t) {
+    char* rec = out.data() + 84 + 50 * t + 12;  // normal left zero: readers recompute it
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) {
+        const float x = static_cast<float>(face.xyz[3 * static_cast<size_t>(face.tri[static_cast<size_t>(3 * t + k)]) + static_cast<size_t>(a)]);
+        std::memcpy(rec + 12 * k + 4 * a, &x, 4);
+      }
+  }
+  return std::fwrite(out.data(), 1, out.size(), file.get()) == out.size() && std::fflush(file.get()) == 0;
 }
 
 }  // namespace wefm_bench

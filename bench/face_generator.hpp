@@ -36,4 +36,7 @@ std::string size_label(int64_t size);
 // Returns false with errno set when the file cannot be written.
 bool write_obj(const std::string& path, const Face& face);
 
+// Binary STL (float32 corners, no shared vertices): what a reader must merge back.
+bool write_stl(const std::string& path, const Face& face);
+
 }  // namespace wefm_bench

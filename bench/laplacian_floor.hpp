@@ -18,6 +18,7 @@ struct FloorResult {
   double flops = 0;          // CHOLMOD's fl
   std::string ordering;      // the ordering CHOLMOD's default strategy picked
   double assembly = 0, analysis = 0, factorization = 0, solve = 0;
+  double cpu = 0;  // CPU seconds (all threads) of analysis + factorisation + solve
   double total() const { return analysis + factorization + solve; }  // the floor (assembly excluded)
 };
 

@@ -12,6 +12,9 @@ double current_rss_mb();
 
 // Monotonic wall clock in seconds.
 double now_seconds();
+// CPU time of this process (all threads) in seconds: on a shared, loaded machine it says what a
+// step costs when the wall clock also counts other people's work.
+double cpu_seconds();
 
 // CPU model, core count, memory, kernel, compiler and the BLAS/CHOLMOD libraries mapped into this
 // process (read from /proc/self/maps, so it names what actually runs, not what was configured).

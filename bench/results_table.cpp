@@ -1,5 +1,6 @@
 #include "results_table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -62,6 +63,17 @@ Stages stages_of(const Json& c) {
   return s;
 }
 
+double cgal_cpu(const Json& c) {
+  const double v = get(c, "cpu_parameterize");
+  return std::isfinite(v) ? v : get(c, "cpu_user") + get(c, "cpu_sys");
+}
+
+// CPU seconds of the library calls; older results only have the whole process's.
+double cpu_library(const Json& c) {
+  const double v = get(c, "cpu_library");
+  return std::isfinite(v) ? v : get(c, "cpu_user") + get(c, "cpu_sys");
+}
+
 std::string row(const std::vector<std::string>& cells) {
   std::string r = "|";
   for (const auto& c : cells) r += " " + c + " |";
@@ -95,6 +107,7 @@ void add_scaling_exponents(Json& results) {
     series[name].emplace_back(get(c, "triangles"), t, c.value("size", ""));
   }
   for (auto& [name, pts] : series) {
+    std::sort(pts.begin(), pts.end());
     for (size_t k = 0; k + 1 < pts.size(); ++k) {
       const auto& [n1, t1, l1] = pts[k];
       const auto& [n2, t2, l2] = pts[k + 1];
@@ -118,17 +131,22 @@ std::string markdown_tables(const Json& results) {
         "the next six columns are the solve report's timers; `other` is the solve's wall time they do not cover; "
         "`contin.` is the report's continuation time, which *contains* the assembly, factorisations, solves and quality "
         "of the continuation steps (not summed). `total` = mesh+topo + solve wall. `×floor` = total / Laplacian floor "
-        "of the same face. `an/fac/sol` are the report's counters.\n\n";
+        "of the same face. `CPU` is the CPU time (all threads) of the library calls (the whole case process's user+sys, "
+        "face generation included, in results without it), `CPU ×floor` the same ratio in CPU time, and `load` the "
+        "1-minute load average when the case started: on a shared machine a wall time far above the CPU time means the "
+        "case waited for a core, and the CPU figures are the ones to compare. `wefm/CGAL` is total / CGAL LSCM time, wall (CPU). "
+        "`an/fac/sol` are the report's counters.\n\n";
   md += row({"face", "triangles", "s", "mesh+topo", "coeff.", "assembly", "analysis", "factor.", "solves", "quality", "other",
-             "contin.", "**total**", "×floor", "peak MB", "wefm/CGAL", "an/fac/sol", "status"});
-  md += row({"---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"});
+             "contin.", "**total**", "×floor", "CPU", "CPU ×floor", "load", "peak MB", "wefm/CGAL", "an/fac/sol", "status"});
+  md += row({"---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:",
+             "--:", "---"});
   for (const Json& c : cases) {
     if (c.value("kind", "") != "wefm") continue;
     const std::string key = key_of(c);
     if (!ok_case(c)) {
       const std::string why = c.value("timed_out", false) ? "timed out after " + sec(get(c, "wall")) + " s" : "crashed: " + c.value("error", "?");
-      md += row({c.value("shape", ""), c.value("size", ""), fmt(get(c, "s"), "%g"), "", "", "", "", "", "", "", "", "", "–", "", "",
-                 "", "", why});
+      md += row({c.value("shape", ""), c.value("size", ""), fmt(get(c, "s"), "%g"), "", "", "", "", "", "", "", "", "", "–", "", "", "",
+                 "", "", "", "", why});
       continue;
     }
     const Stages s = stages_of(c);
@@ -142,10 +160,41 @@ std::string markdown_tables(const Json& results) {
     else if (status == "WEFM_ERROR_NOT_CONVERGED") status = "not converged (s reached " + fmt(get(r, "s_reached"), "%g") + ")";
     md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "s"), "%g"), sec(s.mesh_topology), sec(s.coefficients),
                sec(s.assembly), sec(s.analysis), sec(s.factorization), sec(s.solve), sec(s.quality), sec(s.other), sec(s.continuation),
-               "**" + sec(s.total) + "**", fmt(s.total / floor_t, "%.1f"), fmt(get(c, "peak_rss_mb"), "%.0f"), fmt(s.total / cgal_t, "%.2f"),
+               "**" + sec(s.total) + "**", fmt(s.total / floor_t, "%.1f"), sec(cpu_library(c)),
+               floor ? fmt(cpu_library(c) / get(*floor, "cpu_floor"), "%.1f") : "–",
+               fmt(get(c, "load_before"), "%.1f"), fmt(get(c, "peak_rss_mb"), "%.0f"),
+               cgal ? fmt(s.total / cgal_t, "%.2f") + " (" + fmt(cpu_library(c) / cgal_cpu(*cgal), "%.2f") + ")" : "–",
                fmt(get(r, "symbolic_analyses"), "%.0f") + "/" + fmt(get(r, "numeric_factorizations"), "%.0f") + "/" +
                    fmt(get(r, "solves"), "%.0f"),
                status});
+  }
+
+  bool any_stage_cpu = false;
+  for (const Json& c : cases) any_stage_cpu |= c.value("kind", "") == "wefm" && ok_case(c) && c.contains("progress_stages_cpu");
+  if (any_stage_cpu) {
+    static const char* kStages[] = {"coefficients", "assembly", "factorise", "solve", "repeated edges", "continuation", "rollout", "quality"};
+    md += "\n### Where the solve spends its time, by progress stage (CPU seconds, share of the solve)\n\n";
+    md += "From the progress callback: each stage runs from the callback naming it to the next one. `factorise` is "
+          "`set_matrix` (K_PP extraction, analysis, factorisation); `solve` the constrained solves of the conformal layout "
+          "with both gauges; `continuation` every rho step. CPU time, so it holds on a loaded machine.\n\n";
+    std::vector<std::string> head{"face", "triangles", "s"}, align{"---", "--:", "--:"};
+    for (const char* st : kStages) {
+      head.push_back(st);
+      align.push_back("--:");
+    }
+    md += row(head) + row(align);
+    for (const Json& c : cases) {
+      if (c.value("kind", "") != "wefm" || !ok_case(c) || !c.contains("progress_stages_cpu")) continue;
+      const Json& pc = c["progress_stages_cpu"];
+      double sum = 0;
+      for (const auto& kv : pc.items()) sum += kv.value().get<double>();
+      std::vector<std::string> cells{c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "s"), "%g")};
+      for (const char* st : kStages) {
+        const double v = get(pc, st);
+        cells.push_back(std::isfinite(v) ? sec(v) + " (" + fmt(100 * v / sum, "%.0f") + "%)" : "–");
+      }
+      md += row(cells);
+    }
   }
 
   md += "\n### Floor and peer (seconds)\n\n";
@@ -153,9 +202,9 @@ std::string markdown_tables(const Json& results) {
         "analysis + numeric factorisation + one solve (assembly not included). `complex` is the same matrix stored as "
         "complex, what an n×n Hermitian formulation would pay. CGAL: `Surface_mesh_parameterization::LSCM_parameterizer_3` "
         "(default solver), `parameterize` call only; `build` is converting the arrays to a `Surface_mesh`.\n\n";
-  md += row({"face", "triangles", "ordering", "analysis", "factor.", "solve", "**floor**", "floor peak MB", "complex floor", "CGAL build",
-             "**CGAL LSCM**", "CGAL peak MB", "CGAL / floor"});
-  md += row({"---", "--:", "---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"});
+  md += row({"face", "triangles", "ordering", "analysis", "factor.", "solve", "**floor**", "floor CPU", "floor peak MB", "complex floor",
+             "CGAL build", "**CGAL LSCM**", "CGAL CPU", "CGAL peak MB", "CGAL / floor"});
+  md += row({"---", "--:", "---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:"});
   std::vector<std::string> keys;
   for (const Json& c : cases)
     if (c.value("kind", "") == "floor" && ok_case(c)) keys.push_back(key_of(c));
@@ -167,8 +216,9 @@ std::string markdown_tables(const Json& results) {
     std::string cgal_cell = cg ? "**" + sec(cgal_t) + "**" : "–";
     if (cg && cg->value("status", "") != "ok") cgal_cell = cg->value("status", "failed");
     md += row({f.value("shape", ""), fmt(get(f, "triangles"), "%.0f"), f.value("ordering", ""), sec(get(f, "time_analysis")),
-               sec(get(f, "time_factorization")), sec(get(f, "time_solve")), "**" + sec(get(f, "time_floor")) + "**",
+               sec(get(f, "time_factorization")), sec(get(f, "time_solve")), "**" + sec(get(f, "time_floor")) + "**", sec(get(f, "cpu_floor")),
                fmt(get(f, "peak_rss_mb"), "%.0f"), fc ? sec(get(*fc, "time_floor")) : "–", cg ? sec(get(*cg, "time_build")) : "–", cgal_cell,
+               cg ? sec(cg->contains("cpu_parameterize") ? get(*cg, "cpu_parameterize") : get(*cg, "cpu_user") + get(*cg, "cpu_sys")) : "–",
                cg ? fmt(get(*cg, "peak_rss_mb"), "%.0f") : "–", fmt(cgal_t / get(f, "time_floor"), "%.1f")});
   }
 
@@ -201,16 +251,22 @@ std::string markdown_tables(const Json& results) {
     }
   }
 
-  bool any_read = false;
-  for (const Json& c : cases) any_read |= c.value("kind", "") == "read" && ok_case(c);
-  if (any_read) {
-    md += "\n### OBJ reading (`wefm_mesh_read`, file in the page cache)\n\n";
-    md += row({"face", "triangles", "file MB", "read", "MB/s"});
-    md += row({"---", "--:", "--:", "--:", "--:"});
+  bool any_io = false;
+  for (const Json& c : cases) any_io |= c.value("kind", "") == "io" && ok_case(c);
+  if (any_io) {
+    md += "\n### File I/O (`wefm_mesh_read`; the `wefm` tool's UV OBJ writer; files in the page cache)\n\n";
+    md += "Wall / CPU seconds. The STL is binary (float32 corners, unshared), so reading it includes merging the "
+          "corners back into vertices; `merged` is `wefm_mesh_info.merged_vertices`.\n\n";
+    md += row({"face", "triangles", "OBJ MB", "read OBJ", "UV OBJ MB", "write UV OBJ", "STL MB", "read STL", "merged", "status"});
+    md += row({"---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"});
+    auto wc = [&](const Json& c, const char* step) {
+      return sec(get(c, (std::string("time_") + step).c_str())) + " / " + sec(get(c, (std::string("cpu_") + step).c_str()));
+    };
     for (const Json& c : cases)
-      if (c.value("kind", "") == "read" && ok_case(c))
-        md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "file_mb"), "%.1f"), sec(get(c, "time_read")),
-                   fmt(get(c, "file_mb") / get(c, "time_read"), "%.0f")});
+      if (c.value("kind", "") == "io" && ok_case(c))
+        md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "obj_mb"), "%.1f"), wc(c, "read_obj"),
+                   fmt(get(c, "uv_obj_mb"), "%.1f"), wc(c, "write_uv_obj"), fmt(get(c, "stl_mb"), "%.1f"), wc(c, "read_stl"),
+                   fmt(get(c, "stl_merged_vertices"), "%.0f"), c.value("status", "")});
   }
   return md;
 }
