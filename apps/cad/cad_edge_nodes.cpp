@@ -35,12 +35,49 @@ EdgeNodes resample(const CadFace& face, const CadEdge& edge, double h) {
 
 }  // namespace
 
-std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h) {
+double chain_length(const CadFace& f, const CadEdge& e) {
+  double length = 0;
+  for (size_t i = 0; i + 1 < e.vertices.size(); ++i)
+    length += distance(&f.xyz[3 * static_cast<size_t>(e.vertices[i])], &f.xyz[3 * static_cast<size_t>(e.vertices[i + 1])]);
+  return length;
+}
+
+std::vector<double> local_face_sizes(const CadModel& model, double h) {
+  std::vector<double> sizes(model.faces.size(), h);
+  for (size_t k = 0; k < model.faces.size(); ++k) {
+    const CadFace& f = model.faces[k];
+    if (!f.error.empty()) continue;
+    double area = 0;
+    for (size_t t = 0; t + 2 < f.triangles.size(); t += 3) {
+      const double* a = &f.xyz[3 * static_cast<size_t>(f.triangles[t])];
+      const double* b = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 1])];
+      const double* c = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 2])];
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+      area += 0.5 * std::sqrt(x * x + y * y + z * z);
+    }
+    double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
+    for (const auto& loop : f.loops)
+      for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
+    if (perimeter > 0) sizes[k] = std::clamp(2 * area / perimeter, h / 16, h);
+  }
+  return sizes;
+}
+
+std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h, const std::vector<double>& face_sizes) {
+  std::map<long long, double> edge_size;
+  for (size_t k = 0; k < model.faces.size(); ++k) {
+    const double hf = k < face_sizes.size() ? face_sizes[k] : h;
+    for (const CadEdge& e : model.faces[k].edges) {
+      auto [it, fresh] = edge_size.emplace(e.id, hf);
+      if (!fresh) it->second = std::min(it->second, hf);
+    }
+  }
   std::map<long long, EdgeNodes> nodes;
   for (const CadFace& f : model.faces) {
     if (!f.error.empty()) continue;
     for (const CadEdge& e : f.edges)
-      if (!e.degenerated && e.vertices.size() >= 2 && !nodes.count(e.id)) nodes.emplace(e.id, resample(f, e, h));
+      if (!e.degenerated && e.vertices.size() >= 2 && !nodes.count(e.id)) nodes.emplace(e.id, resample(f, e, edge_size.at(e.id)));
   }
   return nodes;
 }

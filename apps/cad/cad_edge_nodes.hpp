@@ -15,8 +15,16 @@ struct EdgeNodes {
   std::vector<double> xyz;  // 3 per node, in the edge's direction, both end vertices included
 };
 
-// Per model edge id: its nodes at target size h (at least one segment; at least three for a closed
-// edge, so a circle stays a polygon). Degenerate edges get no entry.
-std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h);
+// Local size per face (by CadModel::faces index): a face narrower than h gets its width, so it has
+// about one element across instead of elements stretched over it. Width = 2 area / perimeter (the
+// width of a long strip, the radius of a disk). Floored at h / 16 so a needle face cannot ask for
+// millions of elements along its long edges.
+std::vector<double> local_face_sizes(const CadModel& model, double h);
+
+// Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
+// stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
+// empty for h everywhere). Degenerate edges get no entry.
+std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h,
+                                                      const std::vector<double>& face_sizes = {});
 
 }  // namespace wefm_cad

@@ -57,6 +57,7 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"jobs", 'j', "N", "faces meshed at the same time, one thread and one handle each", std::to_string(hw), false},
       {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
+      {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; repeatable)", "", true},
       {"smoothing", 0, "N", "UV smoothing passes of free meshes", smooth, false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
@@ -251,7 +252,9 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   }
   if (args.has("size-ratio")) size *= model.bbox_diagonal;
   const auto t_edges = Clock::now();
-  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size);
+  std::vector<double> face_sizes(model.faces.size(), size);
+  if (!args.has("no-local-size")) face_sizes = wefm_cad::local_face_sizes(model, size);
+  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes);
   const double time_edges = since(t_edges);
 
   wefm_mesh_options free_options, tf_options;
@@ -272,7 +275,9 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   auto worker = [&] {
     for (size_t i; !interrupted() && (i = next++) < runs.size();) {
       FaceMeshRun& r = runs[i];
-      mesh_one_face(r, settings, transfinite.count(r.face->index) ? tf_options : free_options, edge_nodes, watcher);
+      wefm_mesh_options options = transfinite.count(r.face->index) ? tf_options : free_options;
+      options.size = face_sizes[i];
+      mesh_one_face(r, settings, options, edge_nodes, watcher);
       const size_t done = ++finished;
       if (!quiet) {
         std::lock_guard<std::mutex> lock(print_mutex);
@@ -344,6 +349,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
       faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
                        {"reason", r.reason}, {"elements", fq.triangles},
                        {"type", transfinite.count(r.face->index) ? "transfinite" : "free"},
+                       {"size", face_sizes[static_cast<size_t>(&r - runs.data())]},
                        {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},
                        {"lambda_min", fq.triangles ? Json(fq.lambda_min) : Json(nullptr)},
                        {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
