@@ -59,12 +59,13 @@ WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_opti
   WEFM_REQUIRE(options, "wefm_face_mesh_domain");
   WEFM_REQUIRE(out, "wefm_face_mesh_domain");
   *out = nullptr;
+  face->cancel.store(false);
   return guarded(&face->last_error, [&] {
     wefm::capi::check_struct_size(options->struct_size, "wefm_mesh_options");
     const wefm_mesh_options o = wefm::capi::read_versioned(options, default_mesh_options());
     const wefm::FlattenResult& r = face->face.result();
     auto dm = std::make_unique<wefm_domain_mesh>();
-    dm->mesh = wefm::meshing::mesh_domain(face->face.mesh(), face->face.topology(), r.uv, convert(o), face->face.edge_nodes());
+    dm->mesh = wefm::meshing::mesh_domain(face->face.mesh(), face->face.topology(), r.uv, convert(o), face->face.edge_nodes(), &face->cancel);
     *out = dm.release();
   });
 }

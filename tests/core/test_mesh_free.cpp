@@ -101,3 +101,16 @@ TEST_CASE("mesh options are checked") {
   o.max_elements = 10;
   CHECK_THROWS_AS(f.mesh_domain(o), Error);
 }
+
+TEST_CASE("a raised cancel flag stops free meshing with Error(cancelled)") {
+  const auto f = test::solved(test::unit_square(4));
+  meshing::MeshOptions o;
+  o.size = 0.01;
+  const std::atomic<bool> cancel{true};
+  try {
+    (void)meshing::mesh_domain(f.mesh(), f.topo(), f.uv(), o, {}, &cancel);
+    FAIL("not cancelled");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::cancelled);
+  }
+}

@@ -12,7 +12,8 @@
 
 namespace wefm::meshing {
 
-DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o, const EdgeNodes& given) {
+DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o, const EdgeNodes& given,
+                       const std::atomic<bool>* cancel) {
   if (!(o.size > 0) || !std::isfinite(o.size)) fail(Errc::invalid_argument, "mesh size must be a positive number (got " + std::to_string(o.size) + ")");
   if (o.type != MeshType::Free && o.type != MeshType::Transfinite) fail(Errc::invalid_argument, "unknown mesh type " + std::to_string(static_cast<int>(o.type)));
   if (!(o.min_angle_deg >= 0 && o.min_angle_deg <= 34)) fail(Errc::invalid_argument, "min_angle_deg must lie in [0, 34] for refinement to terminate (got " + std::to_string(o.min_angle_deg) + ")");
@@ -38,7 +39,7 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     auto t0 = std::chrono::steady_clock::now();
     const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given);
     out.report.time_boundary = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    free_mesh(loops, map, o, out);
+    free_mesh(loops, map, o, out, cancel);
     t0 = std::chrono::steady_clock::now();
     out.normal.resize(out.uv.size());
     for (size_t k = 0; k < out.uv.size(); ++k) {

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "wefm/core/error.hpp"
 #include "wefm/core/meshing/smoothing.hpp"
 #include "wefm/core/meshing/triangulation.hpp"
 
@@ -22,7 +23,11 @@ double circumradius(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 }  // namespace
 
-void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, DomainMesh& out) {
+void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, DomainMesh& out,
+               const std::atomic<bool>* cancel) {
+  auto check_cancel = [&] {
+    if (cancel && cancel->load()) fail(Errc::cancelled, "meshing cancelled");
+  };
   auto t0 = std::chrono::steady_clock::now();
   std::vector<P2> pts;
   std::vector<std::array<Index, 2>> segs;
@@ -44,7 +49,10 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   auto too_big = [&](Index a, Index b, Index c) {
     return circumradius(out.xyz[static_cast<size_t>(a)], out.xyz[static_cast<size_t>(b)], out.xyz[static_cast<size_t>(c)]) > rmax;
   };
+  std::int64_t inserted = 0;
   auto on_insert = [&](Index v) {
+    // Throwing here leaves the triangulation consistent; it is discarded with the exception.
+    if ((++inserted & 255) == 0) check_cancel();
     Vec3 x;
     map.lift(tr.node(v), x);
     if (out.xyz.size() <= static_cast<size_t>(v)) out.xyz.resize(static_cast<size_t>(v) + 1);
@@ -58,6 +66,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   auto tris = tr.triangles();
   out.report.time_mesh = seconds_since(t0);
 
+  check_cancel();
   t0 = std::chrono::steady_clock::now();
   improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, o.smoothing_iterations, map);
   out.report.time_smooth = seconds_since(t0);

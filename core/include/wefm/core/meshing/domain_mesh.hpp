@@ -1,5 +1,6 @@
 #pragma once
 // A mesh of the solved domain and its image in 3D (METHOD §9): the entry point of meshing.
+#include <atomic>
 #include <vector>
 
 #include "wefm/core/meshing/boundary.hpp"
@@ -25,7 +26,8 @@ struct DomainMesh {
 
 // Needs a solved face: `uv` holds the UV of every use. Throws Error(invalid_argument) on bad
 // options and Error(unsupported) for transfinite meshing of a face with holes or too few corners.
+// Setting `*cancel` from another thread stops refinement and smoothing: Error(cancelled).
 DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& options,
-                       const EdgeNodes& given = {});
+                       const EdgeNodes& given = {}, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace wefm::meshing

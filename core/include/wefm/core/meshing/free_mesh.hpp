@@ -1,11 +1,14 @@
 #pragma once
 // Free triangular meshing of the domain (METHOD §9.2): constrained Delaunay triangulation of the
 // boundary nodes, Delaunay refinement sized so 3D elements come out near h, then improvement in 3D.
+#include <atomic>
+
 #include "wefm/core/meshing/domain_mesh.hpp"
 #include "wefm/core/meshing/surface_map.hpp"
 
 namespace wefm::meshing {
 
-void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& options, DomainMesh& out);
+void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& options, DomainMesh& out,
+               const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace wefm::meshing
