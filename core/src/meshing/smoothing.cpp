@@ -133,16 +133,22 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
 }  // namespace
 
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, int iterations, const SurfaceMap& map) {
+  // Flip passes until few flips remain; stop smoothing once a pass moves almost nothing: the last
+  // sweeps of a converged mesh cost a full pass each and change no figure.
+  const std::int64_t few_flips = std::max<std::int64_t>(1, static_cast<std::int64_t>(tris.size()) / 1000);
+  const std::int64_t few_moves = std::max<std::int64_t>(1, (static_cast<std::int64_t>(uv.size()) - fixed) / 200);
+  auto flips = [&] {
+    for (int k = 0; k < 8 && flip_pass(uv, xyz, tris) >= few_flips; ++k) {
+    }
+  };
   std::int64_t total = 0;
   for (int it = 0; it < iterations; ++it) {
-    for (int k = 0; k < 8 && flip_pass(uv, xyz, tris) > 0; ++k) {
-    }
+    flips();
     const std::int64_t m = smooth_pass(uv, xyz, tris, fixed, map);
     total += m;
-    if (m == 0) break;
+    if (m < few_moves) break;
   }
-  for (int k = 0; k < 8 && flip_pass(uv, xyz, tris) > 0; ++k) {
-  }
+  flips();
   return total;
 }
 
