@@ -21,12 +21,15 @@
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
 
+#include "cad_edge_nodes.hpp"
 #include "cad_model.hpp"
 #include "cad_wefm.hpp"
 
 namespace {
 
 using wefm_cad::CadFace;
+
+constexpr double kPi = 3.14159265358979323846;
 
 const CadFace* face_of_type(const wefm_cad::CadModel& m, const std::string& type) {
   for (const CadFace& f : m.faces)
@@ -252,6 +255,42 @@ TEST_CASE("IGES and BREP cylinders import like the STEP one") {
     std::string error;
     REQUIRE_MESSAGE(wefm_cad::set_face_from_cad(face.f, *cyl, error) == WEFM_OK, error);
     CHECK_MESSAGE(wefm_face_build(face.f) == WEFM_OK, wefm_face_last_error(face.f));
+  }
+}
+
+TEST_CASE("model edges are discretised once: nodes on the chain, closed edges at least a triangle, local sizes") {
+  const wefm_cad::CadModel m = load(WEFM_TEST_DATA "/cylinder.step");
+  // Local size = 2 area / perimeter: the disks (r = 10) get their radius, the lateral face
+  // (2 pi 10 x 25, perimeter 2 (2 pi 10) + 2 x 25) about 17.9; all clamped to [h/16, h].
+  const std::vector<double> sizes = wefm_cad::local_face_sizes(m, 50.0);
+  REQUIRE(sizes.size() == 3);
+  for (size_t k = 0; k < 3; ++k) {
+    const double want = m.faces[k].surface_type == "cylinder" ? 2 * (2 * kPi * 10 * 25) / (4 * kPi * 10 + 50) : 10.0;
+    CHECK(sizes[k] == doctest::Approx(want).epsilon(0.02));  // faceted: a little below the smooth values
+  }
+  CHECK(wefm_cad::local_face_sizes(m, 2.0) == std::vector<double>(3, 2.0));
+  const auto nodes = wefm_cad::discretise_model_edges(m, 2.0);
+  const CadFace* cyl = face_of_type(m, "cylinder");
+  REQUIRE(cyl);
+  for (const auto& e : cyl->edges) {
+    REQUIRE(nodes.count(e.id));
+    const auto& xyz = nodes.at(e.id).xyz;
+    const size_t n = xyz.size() / 3;
+    const double* first = &cyl->xyz[3 * static_cast<size_t>(e.vertices.front())];
+    const double* last = &cyl->xyz[3 * static_cast<size_t>(e.vertices.back())];
+    for (int c = 0; c < 3; ++c) {
+      CHECK(xyz[static_cast<size_t>(c)] == first[c]);
+      CHECK(xyz[3 * (n - 1) + static_cast<size_t>(c)] == last[c]);
+    }
+    if (e.seam) CHECK(n == 14);  // 25 / 2 = 12.5 rounds to 13 segments
+    else CHECK(n >= 32);         // a circle of length ~62.8 at h = 2: ~31 segments
+  }
+  // A coarse size still leaves a closed edge three segments.
+  for (const auto& [id, en] : wefm_cad::discretise_model_edges(m, 1000.0)) {
+    bool closed = false;
+    for (const auto& e : cyl->edges)
+      if (e.id == id) closed = e.vertices.front() == e.vertices.back();
+    if (closed) CHECK(en.xyz.size() / 3 == 4);
   }
 }
 
