@@ -21,4 +21,5 @@ program consumer
   if (size(uv, 2) /= 4) error stop "uv count"
   call wefm_face_release(face)
   print '(a,a,a,i0,a)', "consumer (Fortran): wefm ", wefm_f_version(), ", ", size(uv), " UV values"
+  deallocate(uv)  ! main-program variables are never freed implicitly: LeakSanitizer would report it
 end program
