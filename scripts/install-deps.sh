@@ -13,3 +13,5 @@ $SUDO apt-get install -y -qq --no-install-recommends \
 $SUDO apt-get install -y -qq --no-install-recommends \
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev libocct-data-exchange-dev \
   libtbb-dev >/dev/null
+# bench/compare_gmsh.py (scripts/cad_results.sh) runs the gmsh program side by side; never linked.
+$SUDO apt-get install -y -qq --no-install-recommends gmsh >/dev/null

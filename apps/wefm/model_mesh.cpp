@@ -77,6 +77,10 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
       node_face_.push_back(face_tag);
     }
   }
+  // Welding can also turn two triangles that touch both sides of a seam near its degenerate end into
+  // one triangle twice, once each way: a zero-volume fold. Both copies are dropped.
+  std::vector<std::array<int32_t, 3>> kept;
+  std::map<std::array<int32_t, 3>, std::vector<size_t>> by_corners;
   int64_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const int32_t a = global[static_cast<size_t>(triangles[t])], b = global[static_cast<size_t>(triangles[t + 1])],
@@ -85,7 +89,21 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
       ++dropped;
       continue;
     }
-    tris_.insert(tris_.end(), {a, b, c});
+    std::array<int32_t, 3> key{a, b, c};
+    std::sort(key.begin(), key.end());
+    by_corners[key].push_back(kept.size());
+    kept.push_back({a, b, c});
+  }
+  std::vector<char> fold(kept.size(), 0);
+  for (const auto& [key, list] : by_corners)
+    if (list.size() > 1)
+      for (size_t i : list) fold[i] = 1;
+  for (size_t i = 0; i < kept.size(); ++i) {
+    if (fold[i]) {
+      ++dropped;
+      continue;
+    }
+    tris_.insert(tris_.end(), kept[i].begin(), kept[i].end());
     tri_face_.push_back(face_tag);
   }
   return dropped;

@@ -30,7 +30,8 @@ class ModelMesh {
   explicit ModelMesh(double weld_tolerance) : tol_(weld_tolerance) {}
 
   // Adds one face's mesh (3 doubles per node, 3 node indices per triangle). Returns the number of
-  // triangles dropped because welding collapsed them (at a pole).
+  // triangles dropped because welding collapsed them (at a pole) or folded two of them onto the same
+  // three nodes (near the end of a seam).
   int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
 
   ConformityCounts conformity() const;
