@@ -106,7 +106,7 @@ TEST_CASE("refinement keeps the triangulation constrained Delaunay and meets the
   for (int k = 0; k < 40; ++k) pts.emplace_back(std::cos(2 * kPi * k / 40), 0.5 * std::sin(2 * kPi * k / 40));
   for (Index k = 0; k < 40; ++k) segs.push_back({k, (k + 1) % 40});
   meshing::Triangulation tr(pts, segs);
-  tr.refine([&](Index a, Index b, Index c) { return std::max({(tr.node(a) - tr.node(b)).norm(), (tr.node(b) - tr.node(c)).norm(), (tr.node(c) - tr.node(a)).norm()}) > 0.1; },
+  tr.refine([&](Index a, Index b, Index c) { return std::max({(tr.node(a) - tr.node(b)).norm(), (tr.node(b) - tr.node(c)).norm(), (tr.node(c) - tr.node(a)).norm()}) > 0.1 ? 1 : 0; },
             25 * kPi / 180, 0, [](Index) {});
   CHECK(tr.valid());
   CHECK(tr.node_count() > 100);

@@ -77,8 +77,11 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
                                         const EdgeNodes& given) {
   // Breaks are decided per mesh vertex so both sides of a repeated edge break at the same points.
   std::set<Index> breaks;
+  // A closed edge (a whole boundary cycle, as derived from a bare mesh) starts at an arbitrary
+  // vertex: breaking there would leave a short piece next to a real corner and a cluster of tiny
+  // elements around it.
   for (const auto& ch : topo.edges)
-    if (!ch.empty()) breaks.insert(ch.front()), breaks.insert(ch.back());
+    if (!ch.empty() && ch.front() != ch.back()) breaks.insert(ch.front()), breaks.insert(ch.back());
   for (Index l = 0; l < static_cast<Index>(topo.loop_uses.size()); ++l)
     for (size_t j = 0; j < topo.loop_uses[static_cast<size_t>(l)].size(); ++j)
       if (std::fabs(turning_angle(topo, uv, l, j)) > corner_angle_rad)

@@ -1,6 +1,7 @@
 #include "wefm/core/meshing/free_mesh.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 
 #include "wefm/core/error.hpp"
@@ -46,8 +47,11 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   // the 1.25 margin keeps triangles standing on boundary segments of length ~h (which are never
   // split) from triggering a cascade of tiny elements, and gives a mean edge length near h.
   const double rmax = 1.25 * o.size / std::sqrt(3.0);
-  auto too_big = [&](Index a, Index b, Index c) {
-    return circumradius(out.xyz[static_cast<size_t>(a)], out.xyz[static_cast<size_t>(b)], out.xyz[static_cast<size_t>(c)]) > rmax;
+  auto size_class = [&](Index a, Index b, Index c) {
+    const Vec3 &A = out.xyz[static_cast<size_t>(a)], &B = out.xyz[static_cast<size_t>(b)], &C = out.xyz[static_cast<size_t>(c)];
+    if (circumradius(A, B, C) > rmax) return 1;
+    // Elements far below h are left to smoothing rather than split for their angles.
+    return std::min({(A - B).norm(), (B - C).norm(), (C - A).norm()}) < 0.3 * o.size ? -1 : 0;
   };
   std::int64_t inserted = 0;
   auto on_insert = [&](Index v) {
@@ -60,7 +64,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   };
   // A triangulation has about twice as many triangles as nodes: stop refining near the cap.
   const std::int64_t max_nodes = o.max_elements > 0 ? o.max_elements / 2 + 1 : 0;
-  tr.refine(too_big, o.min_angle_deg * kPi / 180.0, max_nodes, on_insert);
+  tr.refine(size_class, o.min_angle_deg * kPi / 180.0, max_nodes, on_insert);
   out.uv.resize(static_cast<size_t>(tr.node_count()));
   for (Index v = 0; v < tr.node_count(); ++v) out.uv[static_cast<size_t>(v)] = tr.node(v);
   auto tris = tr.triangles();

@@ -151,8 +151,13 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
   for (const Rim& r : rim) {
     if (!(orient2d(pts_[r.a], pts_[r.b], p) > 0)) ok = false;
     if (ok && encroached && r.c && r.a >= kSuper && r.b >= kSuper) {
-      const P2 m = 0.5 * (pts_[r.a] + pts_[r.b]);
-      if ((p - m).squaredNorm() < 0.25 * (pts_[r.b] - pts_[r.a]).squaredNorm()) {
+      // Encroachment zone: points closer to the segment than half its length (the diametral
+      // disk widened into a stadium). The disk alone leaves the region above a shared segment
+      // end open, where circumcentres then pile up in clusters of tiny elements.
+      const P2 ab = pts_[r.b] - pts_[r.a];
+      const double l2 = ab.squaredNorm();
+      const double t = l2 > 0 ? std::clamp((p - pts_[r.a]).dot(ab) / l2, 0.0, 1.0) : 0.0;
+      if ((pts_[r.a] + t * ab - p).squaredNorm() < 0.25 * l2) {
         *encroached = {r.a - kSuper, r.b - kSuper};
         ok = false;
       }
@@ -358,19 +363,20 @@ std::vector<std::array<Index, 3>> Triangulation::triangles() const {
   return out;
 }
 
-void Triangulation::refine(const std::function<bool(Index, Index, Index)>& too_big, double min_angle_rad, std::int64_t max_nodes,
+void Triangulation::refine(const std::function<int(Index, Index, Index)>& size, double min_angle_rad, std::int64_t max_nodes,
                            const std::function<void(Index)>& on_insert) {
   const double sin2 = std::sin(min_angle_rad) * std::sin(min_angle_rad);
   auto bad = [&](Index t) {
     const T& tt = tris_[t];
     if (!tt.live || !tt.inside) return false;
+    const int cls = size(tt.v[0] - kSuper, tt.v[1] - kSuper, tt.v[2] - kSuper);
+    if (cls != 0) return cls > 0;
     const P2 &a = pts_[tt.v[0]], &b = pts_[tt.v[1]], &c = pts_[tt.v[2]];
     // Smallest angle from the shortest edge: sin^2(min) = (2 area / (l_j l_k))^2 over the two others.
     const double l[3] = {(b - c).squaredNorm(), (c - a).squaredNorm(), (a - b).squaredNorm()};
     const int m = static_cast<int>(std::min_element(l, l + 3) - l);
     const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-    if (area2 * area2 < sin2 * l[nx(m)] * l[pv(m)]) return true;
-    return too_big(tt.v[0] - kSuper, tt.v[1] - kSuper, tt.v[2] - kSuper);
+    return area2 * area2 < sin2 * l[nx(m)] * l[pv(m)];
   };
   std::deque<Index> q;
   for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t) q.push_back(t);

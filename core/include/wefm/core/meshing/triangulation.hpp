@@ -21,14 +21,16 @@ class Triangulation {
 
   // Node numbers are the caller's: 0..points.size()-1 the boundary, then inserted nodes. `hint`
   // is a triangle slot to start the search from (any value works).
-  // Inserts p unless it lies outside, on a segment, or inside the diametral circle of a segment it
+  // Inserts p unless it lies outside, on a segment, or closer than half its length to a segment it
   // can see; then `encroached` (if given) gets that segment's two nodes. Returns the new node or -1.
   Index insert(const P2& p, Index hint, std::array<Index, 2>* encroached = nullptr);
 
-  // Refinement: `too_big(a, b, c)` (nodes) decides on size; angle below `min_angle_rad` in UV is
-  // bad too. Circumcentres that encroach a segment are replaced by the apex of the equilateral
+  // Refinement: `size(a, b, c)` (nodes) says +1 too big (always refined), 0 fine (refined when an
+  // angle in UV is below `min_angle_rad`) or -1 too small to refine at all, which bounds the
+  // cascades a small angle at the boundary would start; smoothing takes over there.
+  // Circumcentres that encroach a segment are replaced by the apex of the equilateral
   // triangle on it (segments are never split: their nodes are the boundary discretisation).
-  void refine(const std::function<bool(Index, Index, Index)>& too_big, double min_angle_rad, std::int64_t max_nodes,
+  void refine(const std::function<int(Index, Index, Index)>& size, double min_angle_rad, std::int64_t max_nodes,
               const std::function<void(Index)>& on_insert);
 
   // Structural check for tests: neighbour links reciprocal, every live triangle positive.
