@@ -31,12 +31,26 @@ std::vector<double> compute_weights(const Topology& tp, const Coefficients& c, d
   return w;
 }
 
-SpMatC assemble_surface_operator(const Topology& tp, const Coefficients& c, const std::vector<Complex>& sigma, double k) {
+SpMatC assemble_surface_operator(const Topology& tp, const Coefficients& c, const std::vector<Complex>& sigma, double k, Residual form) {
   const Index n = tp.use_count;
   const size_t nh = c.alpha.size();
   const std::vector<double> w = compute_weights(tp, c, k);
   std::vector<Eigen::Triplet<Complex>> trip;
   trip.reserve(nh * 3);
+  if (form == Residual::PerHalfEdge) {
+    for (size_t h = 0; h < nh; ++h) {
+      const Index i = tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))];
+      const Index i1 = tp.corner_use[h], i2 = tp.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))];
+      const double sw = std::sqrt(w[h]);
+      const Index r = static_cast<Index>(h);
+      trip.emplace_back(r, i, Complex(sw, 0));
+      trip.emplace_back(r, i1, -sw * (1.0 - sigma[h]));
+      trip.emplace_back(r, i2, -sw * sigma[h]);
+    }
+    SpMatC A(static_cast<Index>(nh), n);
+    A.setFromTriplets(trip.begin(), trip.end());
+    return A;
+  }
   for (size_t h = 0; h < nh; ++h) {
     const Index i = tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))];
     const Index i1 = tp.corner_use[h], i2 = tp.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))];

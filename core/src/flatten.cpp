@@ -12,9 +12,10 @@
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
 #include "wefm/core/gauge.hpp"
+#include "wefm/core/gauss_newton.hpp"
+#include "wefm/core/seam_substitution.hpp"
 #include "wefm/core/repeated_edges.hpp"
 #include "wefm/core/rollout.hpp"
-#include "wefm/core/scale.hpp"
 
 namespace wefm {
 
@@ -34,11 +35,6 @@ class Stage {
   const FlattenInput& in_;
 };
 
-double max_rel_change(const std::vector<double>& a, const std::vector<double>& b) {
-  double m = 0;
-  for (size_t i = 0; i < a.size(); ++i) m = std::max(m, std::abs(b[i] / a[i] - 1.0));
-  return m;
-}
 
 }  // namespace
 
@@ -66,6 +62,8 @@ FlattenResult flatten(const FlattenInput& in) {
   const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta);
   rep.time.coefficients = now() - t0;
   rep.degenerate_triangles = coef.degenerate_triangles;
+  if (coef.degenerate_triangles == static_cast<Index>(mesh.triangles.size()))
+    fail(Errc::invalid_mesh, "every triangle of the face has zero area: there is no shape to flatten");
   const double ls = coef.length_scale;
   const Eigen::VectorXd eta = Eigen::Map<const Eigen::VectorXd>(coef.use_area.data(), static_cast<Index>(coef.use_area.size()));
 
@@ -123,8 +121,8 @@ FlattenResult flatten(const FlattenInput& in) {
   const SpMatC B = assemble_boundary_operator(mesh, tp, coef, opt.boundary_weight);
   const SpMatC* Bp = B.rows() ? &B : nullptr;
   std::vector<double> rho;  // empty: s = 0
-  SpMatC A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, 0.0), opt.k);
-  SpMatC K = assemble_energy(A, Bp);
+  const SpMatC A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, 0.0), opt.k, opt.residual);
+  const SpMatC K = assemble_energy(A, Bp);
   rep.time.assembly += now() - t0;
   const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
   const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
@@ -241,74 +239,57 @@ FlattenResult flatten(const FlattenInput& in) {
     (void)current;
   }
   for (size_t e = 0; e < ne; ++e) res.edge_modes[e] = mode[e];
-  const bool had_translation = gauge.translation;
-  gauge.translation = false;  // rows0 holds caller and seam rows only; the gauge rows are added per solve
-  const std::vector<LinearRow> rows0 = rows_with(mode, rotation, nullptr);
-  gauge.translation = had_translation;
 
   // --- Continuation in s ------------------------------------------------------------------------
   const bool early = opt.s > 0 && opt.score_threshold <= 1.0 && score_of(z) >= opt.score_threshold;
-  double s_cur = 0;
   const double t_cont = now();
-  // The rho fixed point is not guaranteed to improve the layout on strongly curved faces (it can
-  // oscillate or fold); keep the best-scoring layout reached and report the s it belongs to.
+  // Gauss-Newton can still end in a worse layout than a smaller s gave (folds on strongly curved
+  // faces): keep the best-scoring layout reached and report the s it belongs to.
   VectorXc best_z = z;
   double best_score = opt.s > 0 ? score_of(z) : 0.0, best_s = 0.0;
-  while (opt.s > 0 && !early && s_cur < opt.s - 1e-12) {
-    const double s_next = std::min(opt.s, s_cur + opt.s_step);
-    StepInfo step;
-    step.s = s_next;
-    bool conv = false;
-    // rho used for this step's matrices; relaxed geometrically toward the layout's rho because the
-    // plain fixed point oscillates where the conformal layout shrank edges strongly.
-    std::vector<double> rho_used = compute_rho(tp, coef, z);
-    double omega = 1.0, prev_change = std::numeric_limits<double>::infinity();
-    for (int it = 0; it < opt.max_rho_iterations; ++it) {
-      stage.check(0.4 + 0.5 * (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / opt.s, "continuation");
-      t0 = now();
-      A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho_used, s_next), opt.k);
-      K = assemble_energy(A, Bp);
-      rep.time.assembly += now() - t0;
-      kkt.set_matrix(K, split.first, split.second);
-      std::vector<LinearRow> rows = rows0;
-      if (gauge.vector) rows.push_back(vec);
-      if (gauge.translation) {
-        pin.rhs = z[pin.terms[0].first];
-        rows.push_back(pin);
-      }
-      VectorXc zn = kkt.solve(rows, eta_ptr);
-      recentre(zn);
-      if (gauge.vector) {
-        // The vector gauge fixes size; for s > 0 the energy prefers one size, so follow it.
-        const double a = optimal_scale(tp, coef, zn, s_next, opt.k, gauge.center);
-        zn = ((zn.array() - gauge.center) * a + gauge.center).matrix();
-        vec.rhs *= a;
-      }
-      const std::vector<double> rho_new = compute_rho(tp, coef, zn);
-      step.rho_change = max_rel_change(rho_used, rho_new);
-      step.iterations = it + 1;
-      z = zn;
-      ++rep.rho_iterations;
+  FactorCounters gn_counters;
+  if (opt.s > 0 && !early) {
+    // For s > 0 the energy fixes the size: start from the layout with the 3D area.
+    double uv_area = 0, a3 = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
+      uv_area += 0.5 * ((u1 - u0).real() * (u2 - u0).imag() - (u1 - u0).imag() * (u2 - u0).real());
+      a3 += coef.tri_area[t];
+    }
+    if (uv_area > 0) z = ((z.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
+    const SeamSubstitution sub = substitute_seams(tp, mode, rotation);
+    std::vector<LinearRow> keep;
+    for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
+    keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
+    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend);
+    if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
+    double s_cur = 0;
+    while (s_cur < opt.s - 1e-12) {
+      const double s_next = std::min(opt.s, s_cur + opt.s_step);
+      const GaussNewtonReport gr = gn.run(z, s_next, opt.rho_tolerance, opt.max_rho_iterations, gauge.vector && s_next >= 1.0, [&](int it) {
+        stage.check(0.4 + 0.5 * (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / opt.s, "continuation");
+      });
+      StepInfo step;
+      step.s = s_next;
+      step.iterations = gr.iterations;
+      step.rho_change = gr.rho_change;
+      rep.rho_iterations += gr.iterations;
+      if (!gr.converged) rep.converged = false;
       const double sc = score_of(z);
       if (sc >= best_score - 1e-12) {
         best_score = sc;
         best_z = z;
         best_s = s_next;
       }
-      if (step.rho_change < opt.rho_tolerance) {
-        conv = true;
-        break;
-      }
-      omega = step.rho_change > prev_change ? std::max(0.125, 0.5 * omega) : std::min(1.0, 1.5 * omega);
-      prev_change = step.rho_change;
-      for (size_t h = 0; h < rho_used.size(); ++h)
-        rho_used[h] = std::clamp(std::pow(rho_used[h], 1.0 - omega) * std::pow(rho_new[h], omega), 1e-3, 1e3);
+      res.steps.push_back(step);
+      ++rep.s_steps;
+      rep.rho_change = step.rho_change;
+      s_cur = s_next;
     }
-    if (!conv) rep.converged = false;
-    res.steps.push_back(step);
-    ++rep.s_steps;
-    rep.rho_change = step.rho_change;
-    s_cur = s_next;
+    recentre(z);
+    recentre(best_z);
+    rep.time.assembly += gn.time_assembly();
+    gn_counters = gn.counters();
   }
   rep.time.continuation = now() - t_cont;
   rep.s = early ? 0.0 : opt.s;
@@ -333,6 +314,12 @@ FlattenResult flatten(const FlattenInput& in) {
   rep.quality = evaluate_quality(mesh, tp, res.uv);
   rep.time.quality += now() - t0;
   rep.counters = kkt.counters();
+  rep.counters.analyses += gn_counters.analyses;
+  rep.counters.factorizations += gn_counters.factorizations;
+  rep.counters.solves += gn_counters.solves;
+  rep.counters.time_analysis += gn_counters.time_analysis;
+  rep.counters.time_factorization += gn_counters.time_factorization;
+  rep.counters.time_solve += gn_counters.time_solve;
   rep.time.analysis = rep.counters.time_analysis;
   rep.time.factorization = rep.counters.time_factorization;
   rep.time.solve = rep.counters.time_solve;

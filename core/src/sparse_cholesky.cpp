@@ -22,22 +22,26 @@ bool have_cholmod() {
 #endif
 }
 
-struct SparseCholesky::Impl {
+template <class Scalar>
+struct SparseCholeskyT<Scalar>::Impl {
   bool use_cholmod = false;
 #ifdef WEFM_HAVE_CHOLMOD
-  Eigen::CholmodSupernodalLLT<SpMatC, Eigen::Lower> cholmod;
+  Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> cholmod;
 #endif
-  Eigen::SimplicialLDLT<SpMatC, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
 };
 
-SparseCholesky::SparseCholesky(Backend backend) : impl_(std::make_unique<Impl>()) {
+template <class Scalar>
+SparseCholeskyT<Scalar>::SparseCholeskyT(Backend backend) : impl_(std::make_unique<Impl>()) {
   impl_->use_cholmod = have_cholmod() && backend != Backend::Eigen;
   if (backend == Backend::Cholmod && !have_cholmod()) fail(Errc::unsupported, "this build of wefm has no CHOLMOD (built with WEFM_WITH_SUITESPARSE=OFF)");
 }
 
-SparseCholesky::~SparseCholesky() = default;
+template <class Scalar>
+SparseCholeskyT<Scalar>::~SparseCholeskyT() = default;
 
-void SparseCholesky::factorize(const SpMatC& K) {
+template <class Scalar>
+void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
   const bool same = K.rows() == n_ && K.isCompressed() &&
                     pattern_outer_.size() == static_cast<size_t>(K.outerSize() + 1) &&
                     std::equal(pattern_outer_.begin(), pattern_outer_.end(), K.outerIndexPtr()) &&
@@ -77,9 +81,10 @@ void SparseCholesky::factorize(const SpMatC& K) {
   }
 }
 
-Eigen::MatrixXcd SparseCholesky::solve(const Eigen::MatrixXcd& rhs) {
+template <class Scalar>
+typename SparseCholeskyT<Scalar>::Dense SparseCholeskyT<Scalar>::solve(const Dense& rhs) {
   const double t0 = now();
-  Eigen::MatrixXcd x;
+  Dense x;
 #ifdef WEFM_HAVE_CHOLMOD
   if (impl_->use_cholmod) x = impl_->cholmod.solve(rhs);
   else
@@ -89,5 +94,8 @@ Eigen::MatrixXcd SparseCholesky::solve(const Eigen::MatrixXcd& rhs) {
   counters_.time_solve += now() - t0;
   return x;
 }
+
+template class SparseCholeskyT<Complex>;
+template class SparseCholeskyT<double>;
 
 }  // namespace wefm

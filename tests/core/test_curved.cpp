@@ -1,4 +1,6 @@
 // Curved faces: no flips, and the figures the closing notes quote.
+#include <cmath>
+
 #include "solve_helpers.hpp"
 
 using namespace wefm;
@@ -35,11 +37,17 @@ TEST_CASE("the two-step gauge costs exactly one numeric factorisation at s = 0")
 }
 
 TEST_CASE("continuation analyses the pattern once whatever the number of steps") {
-  Options o = test::with_s(1);
-  o.s_step = 0.25;
-  const auto r = test::solve(test::hemisphere(), o);
-  CHECK(r.report.counters.analyses == 1);
-  CHECK(r.report.counters.factorizations > 1);
+  // One analysis of the complex s = 0 system, one of the real Gauss-Newton system, for 1 or 8 steps.
+  for (double step : {1.0, 0.125}) {
+    Options o = test::with_s(1);
+    o.s_step = step;
+    const auto r = test::solve(test::hemisphere(), o);
+    CAPTURE(step);
+    CHECK(r.report.converged);
+    CHECK(r.report.counters.analyses == 2);
+    CHECK(r.report.counters.factorizations > 2);
+    CHECK(r.steps.size() == static_cast<size_t>(std::lround(1.0 / step)));
+  }
 }
 
 TEST_CASE("testing seam candidates costs one factorisation in all") {

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "wefm/core/coefficients.hpp"
+#include "wefm/core/options.hpp"
 
 namespace wefm {
 
@@ -15,8 +16,11 @@ std::vector<double> compute_rho(const Topology& topo, const Coefficients& c, con
 // w_h of eq. 9: (1/beta_h) (sum of 1/beta over the half-edges opposite the same use)^(-k).
 std::vector<double> compute_weights(const Topology& topo, const Coefficients& c, double k);
 
-// Surface term operator A (one row per use, eq. 7) with weights of eq. 9.
-SpMatC assemble_surface_operator(const Topology& topo, const Coefficients& c, const std::vector<Complex>& sigma, double k);
+// Surface term operator A with the weights of eq. 9. PerUse: one row per use, the weighted sum of
+// its predictions' errors (eq. 7 as printed). PerHalfEdge: one row per half-edge, each prediction's
+// error weighted by sqrt(w_h), so errors cannot cancel inside a sum (see Options::residual).
+SpMatC assemble_surface_operator(const Topology& topo, const Coefficients& c, const std::vector<Complex>& sigma, double k,
+                                 Residual form);
 
 // Boundary term operator (eq. 10) with rows already scaled by sqrt(mu / l_bar).
 SpMatC assemble_boundary_operator(const TriMesh& mesh, const Topology& topo, const Coefficients& c, double mu);

@@ -7,6 +7,14 @@ namespace wefm {
 
 enum class Method { Global = 0, Rollout = 1 };
 
+// How the surface term sums prediction errors (METHOD §5). PerUse is eq. 7 as printed: one residual
+// per use, the weighted sum of its predictions' errors; errors of opposite sign cancel inside the
+// sum, so the system is barely overdetermined and near-singular along free boundaries (flips on a
+// gently curved grid at s = 0 without the boundary term, measured). PerHalfEdge squares each
+// prediction's error (weight w_h): every triangle's shape is fitted, and the matrix has the
+// one-ring pattern of a Laplacian instead of the two-ring pattern of A^H A per use.
+enum class Residual { PerHalfEdge = 0, PerUse = 1 };
+
 struct Options {
   double s = 1.0;
   double k = 1.0;
@@ -25,6 +33,7 @@ struct Options {
   int threads = 0;
   double memory_limit_mb = 0;
   double min_beta = 1e-3;
+  Residual residual = Residual::PerHalfEdge;
 };
 
 // Throws Error(invalid_argument) naming the first option out of range.

@@ -17,17 +17,22 @@ struct FactorCounters {
 
 bool have_cholmod();
 
-class SparseCholesky {
+// Scalar is Complex (the Hermitian energy of the linear solves) or double (the real Gauss-Newton
+// systems of the continuation, whose steps are not complex-linear).
+template <class Scalar>
+class SparseCholeskyT {
  public:
-  explicit SparseCholesky(Backend backend = Backend::Auto);
-  ~SparseCholesky();
-  SparseCholesky(const SparseCholesky&) = delete;
-  SparseCholesky& operator=(const SparseCholesky&) = delete;
+  using Matrix = Eigen::SparseMatrix<Scalar, Eigen::ColMajor, int>;
+  using Dense = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  explicit SparseCholeskyT(Backend backend = Backend::Auto);
+  ~SparseCholeskyT();
+  SparseCholeskyT(const SparseCholeskyT&) = delete;
+  SparseCholeskyT& operator=(const SparseCholeskyT&) = delete;
 
   // Analyses the pattern when it differs from the last one, then factorises numerically.
   // Throws Error(not_positive_definite) when the matrix is not positive definite.
-  void factorize(const SpMatC& K);
-  Eigen::MatrixXcd solve(const Eigen::MatrixXcd& rhs);
+  void factorize(const Matrix& K);
+  Dense solve(const Dense& rhs);
   Index size() const { return n_; }
   FactorCounters& counters() { return counters_; }
 
@@ -38,5 +43,8 @@ class SparseCholesky {
   Index n_ = 0;
   std::vector<int> pattern_outer_, pattern_inner_;
 };
+
+using SparseCholesky = SparseCholeskyT<Complex>;
+using SparseCholeskyReal = SparseCholeskyT<double>;
 
 }  // namespace wefm

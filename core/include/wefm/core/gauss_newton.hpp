@@ -1,0 +1,106 @@
+#pragma once
+// The WEFM energy at s > 0 with rho a function of the layout (METHOD §3, §5), minimised by damped
+// Gauss-Newton. rho_h = L_h / |z_I2 - z_I1| makes the prediction z_I1 + alpha d + i beta L^s
+// |d|^-s d, whose derivative in d has a complex-linear part (1 - s/2) and an anti-linear part s/2.
+// Lagging rho (the paper's fixed point) treats all of it as complex-linear: the iteration then
+// diverges on smooth faces from s ~ 0.75 (measured on a 100k-triangle bump) and at s = 2, where
+// the complex-linear part vanishes. Gauss-Newton keeps both parts (a real 2n system), decreases the
+// energy at every step (line search, Levenberg-Marquardt damping) and converges where the rho
+// update reaches a fixed point.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "wefm/core/coefficients.hpp"
+#include "wefm/core/options.hpp"
+#include "wefm/core/partitioned_kkt.hpp"
+#include "wefm/core/seam_substitution.hpp"
+#include "wefm/core/sparse_cholesky.hpp"
+
+namespace wefm {
+
+struct GaussNewtonReport {
+  int iterations = 0;
+  double rho_change = 0;  // max relative change of rho over the last step
+  double energy = 0;
+  bool converged = false;
+};
+
+class GaussNewton {
+ public:
+  // K_pattern: the Hermitian energy at s = 0 (its pattern is the pattern of every Gauss-Newton
+  // matrix). rows: constraints over the reduced unknowns that every step must keep (caller rows,
+  // cycle closures); they hold at the starting layout.
+  GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, const SpMatC& K_pattern,
+              const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend);
+
+  // The gauge v = sum_k g_k y_k (a vector between two far uses). For s >= 1 only its direction is
+  // held (rotation) and the size is an unknown like any other. Below s = 1 the energy tends to 0 as
+  // the layout shrinks (its altitude term has degree 1 - s; measured: a torus face collapses
+  // geometrically at s = 0.25) and need not have a local minimum in size, so v is held whole: the
+  // layout keeps the size it starts with (the 3D area). Without a gauge, rows hold rotation and size.
+  void set_gauge_row(LinearRow row) { gauge_row_ = std::move(row); }
+
+  double energy(const VectorXc& z, double s) const;
+
+  // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists).
+  double rescale(VectorXc& z, double s) const;
+
+  // Iterates from z (updated in place) at s until the rho change falls below tol or max_it.
+  // `check` is called once per iteration (progress, cancellation).
+  // With `free_scale` each step is followed by the size that minimises the energy along z -> a z
+  // (a safeguard for s >= 1, where the size is also a Gauss-Newton unknown).
+  template <class Check>
+  GaussNewtonReport run(VectorXc& z, double s, double tol, int max_it, bool free_scale, Check&& check) {
+    GaussNewtonReport rep;
+    double e_prev = energy(z, s);
+    for (int it = 0; it < max_it; ++it) {
+      check(it);
+      rep.rho_change = step(z, s, rep.energy);
+      if (free_scale) {
+        rep.rho_change = std::max(rep.rho_change, std::abs(rescale(z, s) - 1.0));
+        rep.energy = energy(z, s);
+      }
+      rep.iterations = it + 1;
+      // Converged when rho settles, or when the energy no longer decreases to working precision
+      // (a flat valley where rho drifts without changing the fit).
+      const bool stalled = e_prev - rep.energy <= 1e-9 * e_prev;
+      e_prev = rep.energy;
+      if (rep.rho_change < tol || stalled) {
+        rep.converged = true;
+        break;
+      }
+    }
+    return rep;
+  }
+
+  FactorCounters& counters() { return chol_.counters(); }
+  double time_assembly() const { return t_assembly_; }
+
+ private:
+  // One damped step; returns the max relative rho change it made.
+  double step(VectorXc& z, double s, double& energy_out);
+  void linearise(const VectorXc& z, double s, Eigen::VectorXd& g, double& energy);
+  void add_block(Index a, Index b, const double* Ja, const double* Jb);
+  template <class F>
+  void for_each_row(const VectorXc& z, double s, F&& f) const;
+  template <class F>
+  void for_each_row_split(const VectorXc& z, double s, F&& f) const;
+
+  const Topology& tp_;
+  const Coefficients& c_;
+  const SpMatC* B_;
+  Residual form_;
+  std::vector<double> w_;
+  const SeamSubstitution& sub_;
+  SpMatR P_real_;
+  bool identity_ = true;
+  SpMatR H_;  // real 2n x 2n over uses, fixed pattern
+  std::vector<LinearRow> rows_;
+  LinearRow gauge_row_;
+  SparseCholeskyReal chol_;
+  double lambda_ = 1e-6;
+  double t_assembly_ = 0;
+};
+
+}  // namespace wefm

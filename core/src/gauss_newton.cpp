@@ -1,0 +1,282 @@
+#include "wefm/core/gauss_newton.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "wefm/core/energy.hpp"
+#include "wefm/core/error.hpp"
+
+namespace wefm {
+
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// d/dz of a residual term: l dz + m conj(dz).
+struct Entry {
+  Index use;
+  Complex l, m;
+};
+
+// Real 2x2 block (row-major) of dz -> l dz + m conj(dz) acting on (Re dz, Im dz).
+void real_block(const Entry& e, double* J) {
+  J[0] = e.l.real() + e.m.real();
+  J[1] = -e.l.imag() + e.m.imag();
+  J[2] = e.l.imag() + e.m.imag();
+  J[3] = e.l.real() - e.m.real();
+}
+
+void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
+  for (int j = 0; j < ne; ++j)
+    if (es[j].use == use) {
+      es[j].l += l;
+      es[j].m += m;
+      return;
+    }
+  es[ne++] = {use, l, m};
+}
+
+}  // namespace
+
+GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, const SpMatC& K,
+                         const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend)
+    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), rows_(std::move(rows)), chol_(backend) {
+  const Index n = tp.use_count;
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<size_t>(K.nonZeros()) * 4);
+  for (Index col = 0; col < K.outerSize(); ++col)
+    for (SpMatC::InnerIterator it(K, col); it; ++it)
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) trip.emplace_back(2 * static_cast<Index>(it.row()) + a, 2 * col + b, 0.0);
+  H_.resize(2 * n, 2 * n);
+  H_.setFromTriplets(trip.begin(), trip.end());
+  H_.makeCompressed();
+  identity_ = sub.reduced == n && sub.leftover.empty();
+  if (identity_)
+    for (Index u = 0; u < n; ++u) identity_ = identity_ && sub.use_to_reduced[static_cast<size_t>(u)] == u;
+  if (!identity_) {
+    std::vector<Eigen::Triplet<double>> pt;
+    for (Index col = 0; col < sub.P.outerSize(); ++col)
+      for (SpMatC::InnerIterator it(sub.P, col); it; ++it) {
+        const Complex v = it.value();
+        const Index r = static_cast<Index>(it.row());
+        pt.emplace_back(2 * r, 2 * col, v.real());
+        pt.emplace_back(2 * r, 2 * col + 1, -v.imag());
+        pt.emplace_back(2 * r + 1, 2 * col, v.imag());
+        pt.emplace_back(2 * r + 1, 2 * col + 1, v.real());
+      }
+    P_real_.resize(2 * n, 2 * sub.reduced);
+    P_real_.setFromTriplets(pt.begin(), pt.end());
+    P_real_.makeCompressed();
+  }
+}
+
+template <class F>
+void GaussNewton::for_each_row(const VectorXc& z, double s, F&& f) const {
+  for_each_row_split(z, s, [&](Complex p, Complex q, const Entry* es, int ne) { f(p - q, es, ne); });
+}
+
+template <class F>
+void GaussNewton::for_each_row_split(const VectorXc& z, double s, F&& f) const {
+  const size_t nh = c_.alpha.size();
+  // One half-edge's prediction error sw (z_i - z1 - alpha d - g(d)), g(d) = i beta L^s |d|^-s d.
+  // p: the part of degree 1 in z, q: the altitude term g of degree 1 - s.
+  auto half_edge = [&](size_t h, double sw, Complex& p, Complex& q, Entry* es, int& ne) {
+    const Index hi = static_cast<Index>(h);
+    const Index i = tp_.corner_use[static_cast<size_t>(HalfEdges::prev(hi))];
+    const Index i1 = tp_.corner_use[h], i2 = tp_.corner_use[static_cast<size_t>(HalfEdges::next(hi))];
+    const Complex d = z[i2] - z[i1];
+    const double ad = std::max(std::abs(d), 1e-12);
+    const Complex u = std::abs(d) > 0 ? d / std::abs(d) : Complex(1, 0);
+    const double mag = c_.beta[h] * (s == 0 ? 1.0 : std::pow(c_.length[h] / ad, s));
+    const Complex g = Complex(0, mag) * d;
+    const Complex lg = Complex(0, mag * (1.0 - 0.5 * s)), mg = Complex(0, -mag * 0.5 * s) * u * u;
+    p += sw * (z[i] - z[i1] - c_.alpha[h] * d);
+    q += sw * g;
+    add_entry(es, ne, i, sw, 0.0);
+    add_entry(es, ne, i1, sw * (-(1.0 - c_.alpha[h]) + lg), sw * mg);
+    add_entry(es, ne, i2, sw * (-c_.alpha[h] - lg), -sw * mg);
+  };
+  Entry es[64];
+  if (form_ == Residual::PerHalfEdge) {
+    for (size_t h = 0; h < nh; ++h) {
+      Complex p{0, 0}, q{0, 0};
+      int ne = 0;
+      half_edge(h, std::sqrt(w_[h]), p, q, es, ne);
+      f(p, q, es, ne);
+    }
+  } else {
+    // Rows per use: the half-edges opposite each use, grouped once.
+    std::vector<std::vector<size_t>> opp(static_cast<size_t>(tp_.use_count));
+    for (size_t h = 0; h < nh; ++h) opp[static_cast<size_t>(tp_.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))])].push_back(h);
+    std::vector<Entry> big;
+    for (const auto& hs : opp) {
+      if (hs.empty()) continue;
+      Complex p{0, 0}, q{0, 0};
+      int ne = 0;
+      big.assign(2 * hs.size() + 1, Entry{});
+      for (size_t h : hs) half_edge(h, w_[h], p, q, big.data(), ne);
+      f(p, q, big.data(), ne);
+    }
+  }
+}
+
+void GaussNewton::add_block(Index a, Index b, const double* Ja, const double* Jb) {
+  // H(a, b) += Ja^T Jb
+  for (int cb = 0; cb < 2; ++cb) {
+    const Index col = 2 * b + cb;
+    const int* begin = H_.innerIndexPtr() + H_.outerIndexPtr()[col];
+    const int* end = H_.innerIndexPtr() + H_.outerIndexPtr()[col + 1];
+    const int* p = std::lower_bound(begin, end, 2 * a);
+    if (p == end || *p != 2 * a) fail(Errc::internal, "Gauss-Newton block outside the energy pattern");
+    double* v = H_.valuePtr() + (p - H_.innerIndexPtr());
+    for (int ra = 0; ra < 2; ++ra) v[ra] += Ja[0 * 2 + ra] * Jb[0 * 2 + cb] + Ja[1 * 2 + ra] * Jb[1 * 2 + cb];
+  }
+}
+
+void GaussNewton::linearise(const VectorXc& z, double s, Eigen::VectorXd& g, double& energy) {
+  const Index n = tp_.use_count;
+  std::fill(H_.valuePtr(), H_.valuePtr() + H_.nonZeros(), 0.0);
+  g.setZero(2 * n);
+  energy = 0;
+  std::vector<double> J;
+  auto accumulate = [&](Complex r, const Entry* es, int ne) {
+    energy += std::norm(r);
+    J.resize(static_cast<size_t>(4 * ne));
+    for (int a = 0; a < ne; ++a) {
+      real_block(es[a], &J[static_cast<size_t>(4 * a)]);
+      const double* Ja = &J[static_cast<size_t>(4 * a)];
+      g[2 * es[a].use] += Ja[0] * r.real() + Ja[2] * r.imag();
+      g[2 * es[a].use + 1] += Ja[1] * r.real() + Ja[3] * r.imag();
+    }
+    for (int a = 0; a < ne; ++a)
+      for (int b = 0; b < ne; ++b) add_block(es[a].use, es[b].use, &J[static_cast<size_t>(4 * a)], &J[static_cast<size_t>(4 * b)]);
+  };
+  for_each_row(z, s, accumulate);
+  if (B_) {
+    // The boundary term is complex-linear: rows of B as they are.
+    const Eigen::SparseMatrix<Complex, Eigen::RowMajor, int> Br = *B_;
+    Entry es[8];
+    for (Index row = 0; row < Br.rows(); ++row) {
+      Complex r{0, 0};
+      int ne = 0;
+      for (Eigen::SparseMatrix<Complex, Eigen::RowMajor, int>::InnerIterator it(Br, row); it; ++it) {
+        r += it.value() * z[it.col()];
+        if (ne < 8) add_entry(es, ne, static_cast<Index>(it.col()), it.value(), 0.0);
+      }
+      accumulate(r, es, ne);
+    }
+  }
+}
+
+double GaussNewton::energy(const VectorXc& z, double s) const {
+  double e = 0;
+  for_each_row(z, s, [&](Complex r, const Entry*, int) { e += std::norm(r); });
+  if (B_) e += ((*B_) * z).squaredNorm();
+  return e;
+}
+
+double GaussNewton::rescale(VectorXc& z, double s) const {
+  // E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R; dE/da = 0 <=> P t^2 - (2-s) Q t + (1-s) R = 0, t = a^s.
+  double P = 0, Q = 0, R = 0;
+  for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
+    P += std::norm(p);
+    Q += (std::conj(p) * q).real();
+    R += std::norm(q);
+  });
+  if (B_) P += ((*B_) * z).squaredNorm();
+  if (!(P > 0) || s <= 0) return 1.0;
+  const double b = -(2 - s) * Q, c = (1 - s) * R, disc = b * b - 4 * P * c;
+  if (disc < 0) return 1.0;
+  const double t = (-b + std::sqrt(disc)) / (2 * P);  // the larger root: the local minimum
+  const double a = t > 0 ? std::pow(t, 1.0 / s) : 1.0;
+  if (!std::isfinite(a) || !(a > 0)) return 1.0;
+  const Complex centre = z.mean();
+  z = ((z.array() - centre) * a + centre).matrix();
+  return a;
+}
+
+double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
+  double t0 = now();
+  Eigen::VectorXd g;
+  double e0 = 0;
+  linearise(z, s, g, e0);
+  SpMatR H;
+  Eigen::VectorXd gy;
+  if (identity_) {
+    H = H_;
+    gy = g;
+  } else {
+    H = SpMatR(P_real_.transpose() * H_ * P_real_);
+    gy = P_real_.transpose() * g;
+  }
+  t_assembly_ += now() - t0;
+  const Index nr = static_cast<Index>(H.rows());
+  // Real constraint rows: Re and Im of each complex row over the reduced unknowns.
+  const bool gauge = !gauge_row_.terms.empty();
+  const bool whole = gauge && s < 1.0;  // hold the vector (size too), or only its direction
+  const Index m = 2 * static_cast<Index>(rows_.size()) + (gauge ? (whole ? 2 : 1) : 0);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nr);
+  auto add_complex_row = [&](Index r0, const LinearRow& row) {
+    for (auto& [k, gk] : row.terms) {
+      C(r0, 2 * k) += gk.real();
+      C(r0, 2 * k + 1) += -gk.imag();
+      C(r0 + 1, 2 * k) += gk.imag();
+      C(r0 + 1, 2 * k + 1) += gk.real();
+    }
+  };
+  for (size_t r = 0; r < rows_.size(); ++r) add_complex_row(2 * static_cast<Index>(r), rows_[r]);
+  if (whole) {
+    add_complex_row(m - 2, gauge_row_);
+  } else if (gauge) {
+    // Im(conj(v) sum g_k dy_k) = 0 with v the current vector: the step turns nothing.
+    const VectorXc y = identity_ ? z : wefm::reduce(sub_, z);
+    Complex v{0, 0};
+    for (auto& [k, gk] : gauge_row_.terms) v += gk * y[k];
+    const Complex cv = std::abs(v) > 0 ? std::conj(v) / std::abs(v) : Complex(1, 0);
+    for (auto& [k, gk] : gauge_row_.terms) {
+      const Complex cc = cv * gk;
+      C(m - 1, 2 * k) += cc.imag();
+      C(m - 1, 2 * k + 1) += cc.real();
+    }
+  }
+  Eigen::VectorXd diag = H.diagonal();
+  const double dmean = diag.mean() > 0 ? diag.mean() : 1.0;
+  const std::vector<double> rho_before = compute_rho(tp_, c_, z);
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    SpMatR Hd = H;
+    for (Index i = 0; i < nr; ++i) Hd.coeffRef(i, i) += lambda_ * diag[i] + 1e-12 * dmean;
+    chol_.factorize(Hd);
+    Eigen::VectorXd delta = chol_.solve(-gy);
+    if (m > 0) {
+      const Eigen::MatrixXd W = chol_.solve(C.transpose());
+      const Eigen::MatrixXd S = C * W;
+      const Eigen::VectorXd mu = S.fullPivLu().solve(C * delta);
+      delta -= W * mu;
+    }
+    VectorXc dy(nr / 2);
+    for (Index k = 0; k < nr / 2; ++k) dy[k] = Complex(delta[2 * k], delta[2 * k + 1]);
+    const VectorXc dz = identity_ ? dy : VectorXc(sub_.P * dy);
+    const double predicted = -gy.dot(delta);  // first-order decrease (negative)
+    for (double t = 1.0; t >= 1.0 / 64; t *= 0.5) {
+      const VectorXc zt = z + t * dz;
+      const double et = energy(zt, s);
+      if (std::isfinite(et) && et <= e0 + 1e-4 * t * predicted) {
+        const std::vector<double> rho_after = compute_rho(tp_, c_, zt);
+        double change = 0;
+        for (size_t h = 0; h < rho_after.size(); ++h) change = std::max(change, std::abs(rho_after[h] / rho_before[h] - 1.0));
+        z = zt;
+        energy_out = et;
+        lambda_ = t == 1.0 ? std::max(lambda_ * 0.1, 1e-10) : lambda_;
+        return change;
+      }
+    }
+    lambda_ *= 10;
+  }
+  energy_out = e0;
+  return 0.0;  // no decrease possible: at a minimum to working precision
+}
+
+}  // namespace wefm
