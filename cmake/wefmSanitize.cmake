@@ -1,0 +1,30 @@
+# Sanitizer and fuzzing builds (tests/README.md).
+#   WEFM_SANITIZE=ON (or address)  AddressSanitizer + UndefinedBehaviorSanitizer (the `sanitize` preset)
+#   WEFM_SANITIZE=thread           ThreadSanitizer (scripts/test.sh builds only the concurrency test with it)
+#   WEFM_BUILD_FUZZ=ON             libFuzzer targets in tests/fuzz (clang only); the whole tree is compiled
+#                                  with -fsanitize=fuzzer-no-link,address,undefined
+set(WEFM_SANITIZE OFF CACHE STRING "Sanitizers: OFF, ON/address (ASan+UBSan) or thread (TSan)")
+set_property(CACHE WEFM_SANITIZE PROPERTY STRINGS OFF ON address thread)
+option(WEFM_BUILD_FUZZ "Build the libFuzzer targets in tests/fuzz (clang only; implies ASan+UBSan)" OFF)
+
+string(TOLOWER "${WEFM_SANITIZE}" _wefm_san)
+if(_wefm_san STREQUAL "thread")
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer -g)
+  add_link_options(-fsanitize=thread)
+elseif(_wefm_san MATCHES "^(on|true|yes|1|address|address,undefined)$")
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -g)
+  add_link_options(-fsanitize=address,undefined)
+elseif(NOT _wefm_san MATCHES "^(off|false|no|0|)$")
+  message(FATAL_ERROR "WEFM_SANITIZE=${WEFM_SANITIZE}: use OFF, ON/address or thread")
+endif()
+
+if(WEFM_BUILD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "WEFM_BUILD_FUZZ needs clang (libFuzzer): configure with CC=clang-14 CXX=clang++-14")
+  endif()
+  if(NOT _wefm_san MATCHES "^(off|false|no|0|)$")
+    message(FATAL_ERROR "WEFM_BUILD_FUZZ brings its own sanitizers; leave WEFM_SANITIZE off")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -g)
+  add_link_options(-fsanitize=address,undefined)
+endif()
