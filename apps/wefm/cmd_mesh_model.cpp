@@ -58,7 +58,7 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
-      {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; repeatable)", "", true},
+      {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
       {"smoothing", 0, "N", "UV smoothing passes of free meshes", smooth, false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
       {"quiet", 'q', "", "no per-face progress lines", "", false},

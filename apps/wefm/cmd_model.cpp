@@ -49,7 +49,7 @@ std::vector<OptionSpec> model_specs() {
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"keep-triangulation", 0, "", "keep a triangulation the file carries (BREP); mesh only faces without one", "",
        false},
-      {"face", 0, "N", "flatten only face N (1-based, as in the index; repeatable)", "", true},
+      {"face", 0, "N", "flatten only face N (1-based, as in the index)", "", true},
       {"atlas", 0, "FILE.svg", "write an SVG atlas of all domains", "", false},
       {"quiet", 'q', "", "no per-face progress lines (the summary table is still printed)", "", false},
   };
