@@ -122,8 +122,10 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
       std::vector<double> params;
       auto it = pos_edge.empty() ? given.end() : given.find(pos_edge[from % n]);
       if (it != given.end()) {
-        // Caller nodes: their arc length along this piece (closest point on its segments).
-        params.push_back(0.0);
+        // Caller nodes: their arc length along this piece (closest point on its segments). The
+        // node keeps the caller's exact 3D point, so faces sharing the edge share the nodes bit
+        // for bit; only its UV comes from the projection.
+        std::vector<std::pair<double, Vec3>> picked;
         for (const Vec3& p : it->second) {
           double best = 1e300, s_best = 0, s0 = 0;
           for (size_t q = 0; q < cnt; ++q) {
@@ -135,9 +137,15 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
             s0 += std::sqrt(l2);
           }
           // Nodes of the edge's other pieces lie off this one.
-          if (best <= 1e-6 * len && s_best > 1e-9 * len && s_best < len * (1 - 1e-9)) params.push_back(s_best);
+          if (best <= 1e-6 * len && s_best > 1e-9 * len && s_best < len * (1 - 1e-9)) picked.emplace_back(s_best, p);
         }
-        std::sort(params.begin(), params.end());
+        std::sort(picked.begin(), picked.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        params.push_back(0.0);
+        for (const auto& pk : picked) params.push_back(pk.first);
+        const size_t first = nodes.xyz.size();
+        place(L, from, cnt, params, nodes);
+        for (size_t q = 0; q < picked.size(); ++q) nodes.xyz[first + 1 + q] = picked[q].second;
+        continue;
       } else {
         for (Index q = 0; q < counts[k]; ++q) params.push_back(len * q / counts[k]);
       }
