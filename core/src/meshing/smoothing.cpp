@@ -106,7 +106,7 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
     if (!kept) uv[static_cast<size_t>(v)] = p0, xyz[static_cast<size_t>(v)] = x0;
     // Nodes of poor elements: compass search on the worst element's quality.
     double now = worst();
-    if (now < 0.8) {
+    if (now < 0.9) {
       P2 best_p = uv[static_cast<size_t>(v)];
       Vec3 best_x = xyz[static_cast<size_t>(v)];
       double step = 0.25 * (centroid - ideal).norm() + 0.1 * (best_p - centroid).norm() + 1e-300;
