@@ -110,9 +110,12 @@ class Importer {
     const TopoDS_Wire outer = BRepTools::OuterWire(face_);
     for (TopExp_Explorer wx(face_, TopAbs_WIRE); wx.More(); wx.Next()) {
       const TopoDS_Wire wire = TopoDS::Wire(wx.Current());
-      if (!outer.IsNull() && wire.IsSame(outer)) out_.outer_loop = static_cast<int>(out_.loops.size());
+      const bool is_outer = !outer.IsNull() && wire.IsSame(outer);
       std::vector<CadEdgeUse> loop;
       for (const TopoDS_Edge& e : wire_edges(wire, face_)) {
+        // INTERNAL/EXTERNAL edges are constraint lines inside (or outside) the face, not its boundary:
+        // the triangulation already follows them, so they are no part of a loop.
+        if (e.Orientation() == TopAbs_INTERNAL || e.Orientation() == TopAbs_EXTERNAL) continue;
         const int id = edge_map_.FindIndex(e);
         if (id <= 0) return fail("an edge of the face is not in the model's edge map");
         auto [it, fresh] = local_.emplace(id, static_cast<int32_t>(out_.edges.size()));
@@ -127,7 +130,9 @@ class Importer {
         }
         loop.push_back({it->second, e.Orientation() == TopAbs_REVERSED});
       }
-      if (!loop.empty()) out_.loops.push_back(std::move(loop));
+      if (loop.empty()) continue;
+      if (is_outer) out_.outer_loop = static_cast<int>(out_.loops.size());
+      out_.loops.push_back(std::move(loop));
     }
     if (out_.loops.empty()) return fail("the face has no wire");
     return true;
