@@ -155,13 +155,14 @@ static void test_inits(void) {
   INIT_CASES(wefm_mesh_options, wefm_mesh_options_init);
   INIT_CASES(wefm_mesh_report, wefm_mesh_report_init);
   EXPECT(WEFM_OK, wefm_options_init(&o, sizeof o));
-  CHECK(o.s == 1.0 && o.k == 1.0 && o.method == WEFM_METHOD_GLOBAL && o.s_step > 0 && o.min_beta > 0);
+  /* The default values belong to the core; here only that they are valid ones. */
+  CHECK(o.s >= 0 && o.s <= 2 && o.k >= 0 && o.k <= 1 && o.method == WEFM_METHOD_GLOBAL && o.s_step > 0 && o.min_beta > 0);
   EXPECT(WEFM_OK, wefm_mesh_options_init(&mo, sizeof mo));
   CHECK(mo.corners[0] == -1 && mo.corners[3] == -1 && mo.quads == 1 && mo.type == WEFM_MESH_FREE);
   /* An "older header" whose wefm_options ended after `s`: s gets its default, nothing past is written. */
   memset(old_options, 0xCD, sizeof old_options);
   EXPECT(WEFM_OK, wefm_options_init(old, offsetof(wefm_options, k)));
-  CHECK(old->struct_size == offsetof(wefm_options, k) && old->s == 1.0);
+  CHECK(old->struct_size == offsetof(wefm_options, k) && old->s == o.s);
   for (i = offsetof(wefm_options, k); i < sizeof old_options; ++i) CHECK(old_options[i] == 0xCD);
 }
 
@@ -241,6 +242,15 @@ static void test_face_lifecycle(void) {
   CHECK(wefm_face_last_error(NULL) != NULL);
   EXPECT(WEFM_OK, wefm_face_create(&face));
   CHECK(strcmp(wefm_face_last_error(face), "") == 0);
+  { /* A new face has the defaults wefm_options_init() gives. */
+    wefm_options d, f;
+    wefm_options_init(&d, sizeof d);
+    wefm_options_init(&f, sizeof f);
+    f.s = f.k = f.s_step = -1;
+    f.threads = -1;
+    EXPECT(WEFM_OK, wefm_face_get_options(face, &f));
+    CHECK(f.s == d.s && f.k == d.k && f.s_step == d.s_step && f.threads == d.threads && f.min_beta == d.min_beta);
+  }
   EXPECT(WEFM_OK, wefm_face_retain(face));
   wefm_face_release(face);
 
@@ -308,7 +318,8 @@ static void test_face_lifecycle(void) {
     EXPECT(WEFM_OK, wefm_face_set_options(face, old));
     wefm_options_init(&back, sizeof back);
     EXPECT(WEFM_OK, wefm_face_get_options(face, &back));
-    CHECK(back.s == 0.5 && back.k == 0.5 && back.boundary_weight == 1.0 && back.struct_size == sizeof back);
+    wefm_options_init(&o, sizeof o);
+    CHECK(back.s == 0.5 && back.k == 0.5 && back.boundary_weight == o.boundary_weight && back.struct_size == sizeof back);
     EXPECT(WEFM_OK, wefm_face_get_options(face, old)); /* writes old_size bytes only */
     for (i = old_size; i < sizeof buf; ++i) CHECK(buf[i] == 0xEE);
   }
