@@ -135,7 +135,7 @@ for name in names:
 if mesh_rows:
     lines += ["### Whole-model meshes (`wefm mesh-model`)", "",
               "`wefm mesh-model MODEL --size-ratio 0.025 -o MODEL.msh -j 2`: every model edge discretised once at",
-              "h = 1/40 of the bounding-box diagonal (faces narrower than h at their width, at least h/16: the local size",
+              "h = 1/40 of the bounding-box diagonal (faces narrower than h at their width, at least h/4: the local size",
               "of apps/README.md), each face flattened, meshed free in its domain and mapped back,",
               "the face meshes welded on their shared edge nodes. Lo's lambda on the 3D triangles; `open` = edges used",
               "by one triangle, `non-manifold` = by more than two (a closed solid must have 0 and 0). Faces listed",

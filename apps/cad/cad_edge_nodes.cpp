@@ -59,7 +59,7 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
     for (const auto& loop : f.loops)
       for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
-    if (perimeter > 0) sizes[k] = std::clamp(2 * area / perimeter, h / 16, h);
+    if (perimeter > 0) sizes[k] = std::clamp(2 * area / perimeter, h / 4, h);
   }
   return sizes;
 }

@@ -261,8 +261,8 @@ TEST_CASE("IGES and BREP cylinders import like the STEP one") {
 TEST_CASE("model edges are discretised once: nodes on the chain, closed edges at least a triangle, local sizes") {
   const wefm_cad::CadModel m = load(WEFM_TEST_DATA "/cylinder.step");
   // Local size = 2 area / perimeter: the disks (r = 10) get their radius, the lateral face
-  // (2 pi 10 x 25, perimeter 2 (2 pi 10) + 2 x 25) about 17.9; all clamped to [h/16, h].
-  const std::vector<double> sizes = wefm_cad::local_face_sizes(m, 50.0);
+  // (2 pi 10 x 25, perimeter 2 (2 pi 10) + 2 x 25) about 17.9; all clamped to [h/4, h].
+  const std::vector<double> sizes = wefm_cad::local_face_sizes(m, 30.0);
   REQUIRE(sizes.size() == 3);
   for (size_t k = 0; k < 3; ++k) {
     const double want = m.faces[k].surface_type == "cylinder" ? 2 * (2 * kPi * 10 * 25) / (4 * kPi * 10 + 50) : 10.0;
