@@ -181,7 +181,7 @@ int run_benchmark(const Settings& st, const std::string& command) {
   results["cli"] = Json::array();
   const std::string self = executable_dir() + "wefm-bench";
   std::fprintf(stderr, "wefm-bench: %s\n  CGAL peer: %s; whole-process: %s\n", results["machine"].get<std::string>().c_str(),
-               st.cgal.empty() ? "not built (install libcgal-dev and rebuild)" : st.cgal.c_str(), st.cli.empty() ? "no" : st.cli.c_str());
+               st.cgal.empty() ? "off (--cgal none, or not built: apt-get install libcgal-dev and rebuild)" : st.cgal.c_str(), st.cli.empty() ? "no" : st.cli.c_str());
   auto run = [&](const std::vector<std::string>& argv, Json header) {
     std::string what;
     for (size_t k = 1; k < argv.size(); ++k) what += (k > 1 ? " " : "") + argv[k];
@@ -316,9 +316,13 @@ int main(int argc, char** argv) {
     }
     for (const char* list : {"cases", "cli"}) {
       Json& all = results[list];
-      std::stable_sort(all.begin(), all.end(), [](const Json& a, const Json& b) {
-        return std::make_tuple(a.value("shape", ""), a.value("triangles", 0.0), a.value("s", -1.0)) <
-               std::make_tuple(b.value("shape", ""), b.value("triangles", 0.0), b.value("s", -1.0));
+      auto nominal = [](const Json& c) {  // a case that died has no triangle count, but its size label
+        int64_t n = 0;
+        return parse_size(c.value("size", ""), n) ? n : int64_t{0};
+      };
+      std::stable_sort(all.begin(), all.end(), [&](const Json& a, const Json& b) {
+        return std::make_tuple(a.value("shape", ""), nominal(a), a.value("s", -1.0)) <
+               std::make_tuple(b.value("shape", ""), nominal(b), b.value("s", -1.0));
       });
     }
     add_scaling_exponents(results);

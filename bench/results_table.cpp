@@ -232,22 +232,21 @@ std::string markdown_tables(const Json& results) {
 
   if (results.contains("cli") && !results["cli"].empty()) {
     md += "\n### Whole process: `wefm flatten IN.obj -o OUT.obj`\n\n";
-    md += "Wall time and peak memory of the `wefm` process (from `wait4`); read (`wefm_mesh_read`), setup (mesh info, "
-          "face, topology) and solve from its `--report`; `write OBJ` is the rest of the job before the report (the UV OBJ "
-          "writer); `start/exit` is process start, report, freeing and exit.\n\n";
-    md += row({"face", "triangles", "s", "**process**", "read OBJ", "setup", "solve", "write OBJ", "start/exit", "peak MB", "×floor", "×CGAL",
-               "status"});
+    md += "Wall time, CPU time (all threads) and peak memory of the `wefm` process (from `wait4`); read "
+          "(`wefm_mesh_read`), setup (mesh info, face, topology) and solve from its `--report`; `write+exit` is the rest: "
+          "writing the UV OBJ (its writer alone: the File I/O table), the report, freeing and process exit.\n\n";
+    md += row({"face", "triangles", "s", "**process**", "CPU", "read OBJ", "setup", "solve", "write+exit", "peak MB", "×floor", "×CGAL", "status"});
     md += row({"---", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "--:", "---"});
     for (const Json& c : results["cli"]) {
       const std::string key = key_of(c);
       const Json* floor = find_case(cases, "floor", key);
       const Json* cg = find_case(cases, "cgal", key);
-      const double wall = get(c, "wall"), job = get(c, "wall_before_report");
+      const double wall = get(c, "wall");
       const double read = get(c, "read_input"), setup = get(c, "setup"), solve = get(c, "wall_solve");
-      md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "s"), "%g"), "**" + sec(wall) + "**", sec(read), sec(setup),
-                 sec(solve), sec(job - read - setup - solve), sec(wall - job), fmt(get(c, "max_rss_mb"), "%.0f"),
-                 floor ? fmt(wall / get(*floor, "time_floor"), "%.1f") : "–", cg ? fmt(wall / get(*cg, "time_parameterize"), "%.2f") : "–",
-                 c.value("status", "")});
+      md += row({c.value("shape", ""), fmt(get(c, "triangles"), "%.0f"), fmt(get(c, "s"), "%g"), "**" + sec(wall) + "**",
+                 sec(get(c, "cpu_user") + get(c, "cpu_sys")), sec(read), sec(setup), sec(solve), sec(wall - read - setup - solve),
+                 fmt(get(c, "max_rss_mb"), "%.0f"), floor ? fmt(wall / get(*floor, "time_floor"), "%.1f") : "–",
+                 cg ? fmt(wall / get(*cg, "time_parameterize"), "%.2f") : "–", c.value("status", "")});
     }
   }
 
