@@ -52,6 +52,7 @@ FlattenResult flatten(const FlattenInput& in) {
   const Topology& tp = *in.topo;
   const Options& opt = in.options;
   validate_options(opt);
+  set_blas_threads(opt.threads);
   Stage stage(in);
   FlattenResult res;
   SolveReport& rep = res.report;

@@ -2,6 +2,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <chrono>
+#include <dlfcn.h>
 
 #include "wefm/core/error.hpp"
 #ifdef WEFM_HAVE_CHOLMOD
@@ -13,6 +14,12 @@ namespace wefm {
 namespace {
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
+
+void set_blas_threads(int threads) {
+  using SetFn = void (*)(int);
+  static const SetFn set = reinterpret_cast<SetFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (set) set(threads < 1 ? 1 : threads);
+}
 
 bool have_cholmod() {
 #ifdef WEFM_HAVE_CHOLMOD

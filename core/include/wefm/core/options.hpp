@@ -23,7 +23,7 @@ struct Options {
   Method method = Method::Global;
   Backend backend = Backend::Auto;
   EdgeMode default_edge_mode = EdgeMode::Auto;
-  double s_step = 0.25;
+  double s_step = 1.0;  // measured: Gauss-Newton gives the same layouts on the real sample as 0.25, in fewer factorisations
   double rho_tolerance = 1e-3;
   int max_rho_iterations = 20;
   double rollout_tolerance = 1e-10;

@@ -17,6 +17,12 @@ struct FactorCounters {
 
 bool have_cholmod();
 
+// Threads of the BLAS under CHOLMOD (OpenBLAS's own pool, process-wide), when the BLAS exposes the
+// setting; a no-op otherwise. One thread by default: the supernodal solves are chains of small
+// BLAS calls whose threads spin-wait (sched_yield) on a busy machine; measured at 100k triangles
+// with the other core loaded, 2 threads took 2.2x the time of 1.
+void set_blas_threads(int threads);
+
 // Scalar is Complex (the Hermitian energy of the linear solves) or double (the real Gauss-Newton
 // systems of the continuation, whose steps are not complex-linear).
 template <class Scalar>

@@ -1,0 +1,76 @@
+// Continuation in s (METHOD §3, §7; issue "Full WEFM"): developable faces stay exact at every s,
+// and on curved faces s trades angle distortion for area distortion monotonically.
+#include <cmath>
+#include <string>
+
+#include "solve_helpers.hpp"
+
+using namespace wefm;
+
+TEST_CASE("developable faces stay exact at s = 0.3, 1 and 2, with and without the boundary term") {
+  struct Case {
+    std::string name;
+    TriMesh mesh;
+  };
+  // Unjittered grids: moving vertices of a cylinder or cone off the rulings makes the facets
+  // non-developable (vertex angle sums leave 2 pi).
+  const TriMesh cone = test::grid(24, 8, [](double u, double v) {
+    const double t = 0.3 + 0.7 * v, a = 2 * kPi * 0.95 * u;
+    return Vec3(0.6 * t * std::cos(a), 0.6 * t * std::sin(a), t);
+  });
+  const Case cases[] = {{"flat patch", test::flat_patch()}, {"cut cylinder", test::cut_open_cylinder(24, 6)}, {"cut cone", cone}};
+  for (const Case& c : cases)
+    for (double s : {0.3, 1.0, 2.0})
+      for (double mu : {0.0, 1.0}) {
+        CAPTURE(c.name);
+        CAPTURE(s);
+        CAPTURE(mu);
+        const auto r = test::solve(c.mesh, test::with_s(s, mu));
+        CHECK(r.report.converged);
+        CHECK(r.report.s == doctest::Approx(s));
+        CHECK(r.report.quality.flips == 0);
+        CHECK(r.report.quality.angle_max < 1 + 1e-7);
+        CHECK(r.report.quality.area_max < 1e-7);
+      }
+}
+
+TEST_CASE("on curved faces area distortion falls and angle distortion rises from s = 0 to 1 to 2") {
+  struct Case {
+    std::string name;
+    TriMesh mesh;
+  };
+  const Case cases[] = {{"hemisphere", test::hemisphere()}, {"saddle", test::saddle()}};
+  for (const Case& c : cases) {
+    double area_prev = 1e300, angle_prev = 0;
+    for (double s : {0.0, 1.0, 2.0}) {
+      const auto r = test::solve(c.mesh, test::with_s(s));
+      const Quality& q = r.report.quality;
+      MESSAGE(c.name << " s=" << s << " area distortion mean " << q.area_mean << " angle distortion mean " << q.angle_mean
+                     << " score " << q.score);
+      CAPTURE(c.name);
+      CAPTURE(s);
+      CHECK(r.report.converged);
+      CHECK(q.flips == 0);
+      CHECK(q.area_mean < area_prev);
+      CHECK(q.angle_mean > angle_prev);
+      area_prev = q.area_mean;
+      angle_prev = q.angle_mean;
+    }
+  }
+}
+
+TEST_CASE("at s = 2 the UV area of the hemisphere is within 2% of its 3D area") {
+  const auto r = test::solve(test::hemisphere(), test::with_s(2.0));
+  const double ratio = r.report.quality.uv_area / r.report.quality.area_3d;
+  MESSAGE("hemisphere s=2: UV area / 3D area = " << ratio);
+  CHECK(r.report.s == 2.0);
+  CHECK(std::abs(ratio - 1.0) < 0.02);
+}
+
+TEST_CASE("the per-use residual of eq. 7 stays available and exact on developable faces") {
+  Options o = test::with_s(1.0);
+  o.residual = Residual::PerUse;
+  const auto r = test::solve(test::cut_open_cylinder(24, 6), o);
+  CHECK(r.report.converged);
+  CHECK(r.report.quality.angle_max < 1 + 1e-7);
+}
