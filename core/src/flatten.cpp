@@ -257,13 +257,14 @@ FlattenResult flatten(const FlattenInput& in) {
       uv_area += 0.5 * ((u1 - u0).real() * (u2 - u0).imag() - (u1 - u0).imag() * (u2 - u0).real());
       a3 += coef.tri_area[t];
     }
-    if (uv_area > 0) z = ((z.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
+    if (uv_area > 0 && gauge.vector) z = ((z.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
     const SeamSubstitution sub = substitute_seams(tp, mode, rotation);
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
     keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
     GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend);
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
+    gn.set_scale_center(gauge.center);
     double s_cur = 0;
     while (s_cur < opt.s - 1e-12) {
       const double s_next = std::min(opt.s, s_cur + opt.s_step);

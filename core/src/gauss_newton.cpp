@@ -193,8 +193,7 @@ double GaussNewton::rescale(VectorXc& z, double s) const {
   const double t = (-b + std::sqrt(disc)) / (2 * P);  // the larger root: the local minimum
   const double a = t > 0 ? std::pow(t, 1.0 / s) : 1.0;
   if (!std::isfinite(a) || !(a > 0)) return 1.0;
-  const Complex centre = z.mean();
-  z = ((z.array() - centre) * a + centre).matrix();
+  z = ((z.array() - center_) * a + center_).matrix();
   return a;
 }
 

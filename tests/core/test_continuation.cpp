@@ -74,3 +74,24 @@ TEST_CASE("the per-use residual of eq. 7 stays available and exact on developabl
   CHECK(r.report.converged);
   CHECK(r.report.quality.angle_max < 1 + 1e-7);
 }
+
+TEST_CASE("a caller's pin holds through the continuation, with and without a seam") {
+  for (bool with_seam : {false, true}) {
+    CAPTURE(with_seam);
+    std::vector<std::pair<Index, Index>> seam;
+    Face f;
+    f.set_mesh(with_seam ? test::open_cylinder(16, 4, &seam) : test::hemisphere());
+    if (with_seam) f.add_seams(seam);
+    const Index use = f.topology().loop_uses[0][0];
+    LinearRow pin;
+    pin.terms = {{use, 1.0}};
+    pin.rhs = Complex(3, 4);
+    f.add_constraint(pin);
+    Options o;
+    o.s = 1;
+    f.set_options(o);
+    f.solve(nullptr, nullptr);
+    CHECK(f.result().report.converged);
+    CHECK(std::abs(f.result().uv[use] - Complex(3, 4)) < 1e-9);
+  }
+}

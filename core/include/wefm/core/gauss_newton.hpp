@@ -41,6 +41,9 @@ class GaussNewton {
   // layout keeps the size it starts with (the 3D area). Without a gauge, rows hold rotation and size.
   void set_gauge_row(LinearRow row) { gauge_row_ = std::move(row); }
 
+  // The point sizes are changed about: one the caller's constraints keep fixed under scaling.
+  void set_scale_center(Complex c) { center_ = c; }
+
   double energy(const VectorXc& z, double s) const;
 
   // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists).
@@ -98,6 +101,7 @@ class GaussNewton {
   SpMatR H_;  // real 2n x 2n over uses, fixed pattern
   std::vector<LinearRow> rows_;
   LinearRow gauge_row_;
+  Complex center_{0, 0};
   SparseCholeskyReal chol_;
   double lambda_ = 1e-6;
   double t_assembly_ = 0;
