@@ -1,11 +1,64 @@
 #!/usr/bin/env bash
-# The whole test suite: the CHOLMOD build and the permissive (Eigen-only) build, each with ctest.
+# The whole test suite (README "Quick start"):
+#   1. release      CHOLMOD build, ctest
+#   2. permissive   Eigen-only build, ctest
+#   3. sanitize     Debug + ASan + UBSan build, the whole ctest suite under it
+#   4. tsan         ThreadSanitizer build of the library and the concurrency test, run
+#   5. fuzz         each libFuzzer target for WEFM_FUZZ_SECONDS (default 30) with clang (scripts/fuzz.sh)
+# WEFM_TEST_STAGES selects stages (default "release permissive sanitize tsan fuzz"); stages whose
+# tools are missing (clang-14 for fuzz) are skipped with a note. Build directories: build/<stage>.
+# Timings per stage are printed at the end (2-core machine: see tests/README.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
-for preset in release permissive; do
-  echo "== $preset build"
-  cmake --preset "$preset" >/dev/null
-  cmake --build --preset "$preset" -j"$jobs"
-  ctest --preset "$preset" -j"$jobs"
+stages=${WEFM_TEST_STAGES:-"release permissive sanitize tsan fuzz"}
+summary=()
+
+stage_time() {  # name start
+  summary+=("$(printf '%-11s %5ds' "$1" $(( $(date +%s) - $2 )))")
+}
+
+for stage in $stages; do
+  t0=$(date +%s)
+  case $stage in
+    release|permissive)
+      echo "== $stage build"
+      cmake --preset "$stage" >/dev/null
+      cmake --build --preset "$stage" -j"$jobs"
+      ctest --preset "$stage" -j"$jobs"
+      ;;
+    sanitize)
+      echo "== sanitize build (ASan + UBSan)"
+      cmake --preset sanitize >/dev/null
+      cmake --build --preset sanitize -j"$jobs"
+      # Programs linked with the sanitized library run as they are. The Python tests load it into
+      # an uninstrumented interpreter: the ASan runtime must be preloaded, and the interpreter's own
+      # allocations at exit are not ours (leak checking stays on for everything else).
+      export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+      ctest --preset sanitize -j"$jobs" -LE python
+      asan_rt=$(${CC:-gcc} -print-file-name=libasan.so)
+      LD_PRELOAD="$asan_rt" ASAN_OPTIONS=detect_leaks=0 ctest --preset sanitize -L python
+      unset UBSAN_OPTIONS
+      ;;
+    tsan)
+      echo "== ThreadSanitizer: concurrency test"
+      cmake -S . -B build/tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWEFM_SANITIZE=thread \
+        -DWEFM_BUILD_APPS=OFF -DWEFM_BUILD_BINDINGS=OFF >/dev/null
+      cmake --build build/tsan -j"$jobs" --target wefm_concurrency_test
+      # BLAS/OpenMP threads inside CHOLMOD are not instrumented: keep them to one.
+      OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+        build/tsan/tests/robustness/wefm_concurrency_test
+      ;;
+    fuzz)
+      if command -v "${WEFM_FUZZ_CXX:-clang++-14}" >/dev/null; then
+        scripts/fuzz.sh "${WEFM_FUZZ_SECONDS:-30}"
+      else
+        echo "== fuzz: ${WEFM_FUZZ_CXX:-clang++-14} not found, skipped"
+      fi
+      ;;
+    *) echo "unknown stage '$stage'" >&2; exit 2 ;;
+  esac
+  stage_time "$stage" "$t0"
 done
+echo "== stage times"
+printf '%s\n' "${summary[@]}"
