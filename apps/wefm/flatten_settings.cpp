@@ -49,6 +49,8 @@ std::vector<OptionSpec> solver_option_specs() {
       {"max-rho-iterations", 0, "N", "rho iterations per s step before reporting non-convergence",
        std::to_string(d.max_rho_iterations), false},
       {"min-beta", 0, "B", "altitude/base floor for degenerate triangles (> 0)", num(d.min_beta), false},
+      {"residual", 0, "half-edge|use", "surface term: each prediction's error squared, or eq. 7's sum per use",
+       d.residual == WEFM_RESIDUAL_PER_USE ? "use" : "half-edge", false},
       {"solver", 0, "auto|cholmod|eigen", "sparse factorisation", solver_name(d.solver), false},
       {"edge-mode", 0, "MODE", "mode of repeated edges not set per edge: auto|free|periodic|scar|rotational",
        edge_mode_name(d.default_edge_mode), false},
@@ -82,6 +84,15 @@ bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std
     else if (m == "rollout") o.method = WEFM_METHOD_ROLLOUT;
     else {
       error = "--method: expected global or rollout, got '" + m + "'";
+      return false;
+    }
+  }
+  if (args.has("residual")) {
+    const std::string& m = args.value("residual");
+    if (m == "half-edge") o.residual = WEFM_RESIDUAL_PER_HALF_EDGE;
+    else if (m == "use") o.residual = WEFM_RESIDUAL_PER_USE;
+    else {
+      error = "--residual: expected half-edge or use, got '" + m + "'";
       return false;
     }
   }

@@ -40,6 +40,7 @@ module wefm
 
   ! ---- wefm_method, wefm_edge_mode, wefm_solver, wefm_mesh_type ------------------------------
   integer(c_int), parameter :: WEFM_METHOD_GLOBAL = 0, WEFM_METHOD_ROLLOUT = 1
+  integer(c_int), parameter :: WEFM_RESIDUAL_PER_HALF_EDGE = 0, WEFM_RESIDUAL_PER_USE = 1
   integer(c_int), parameter :: WEFM_EDGE_AUTO = 0, WEFM_EDGE_FREE = 1, WEFM_EDGE_PERIODIC = 2, &
                                WEFM_EDGE_SCAR = 3, WEFM_EDGE_ROTATIONAL = 4
   integer(c_int), parameter :: WEFM_SOLVER_AUTO = 0, WEFM_SOLVER_CHOLMOD = 1, WEFM_SOLVER_EIGEN = 2
@@ -57,6 +58,7 @@ module wefm
     real(c_double) :: score_threshold
     integer(c_int) :: auto_cut, threads
     real(c_double) :: memory_limit_mb, min_beta
+    integer(c_int) :: residual
   end type wefm_options
 
   type, bind(C) :: wefm_mesh_info

@@ -28,6 +28,7 @@ wefm_options to_c(const wefm::Options& o) {
   c.threads = o.threads;
   c.memory_limit_mb = o.memory_limit_mb;
   c.min_beta = o.min_beta;
+  c.residual = static_cast<int>(o.residual);
   return c;
 }
 
@@ -58,6 +59,9 @@ wefm::Options from_c(const wefm_options& c) {
   o.threads = c.threads;
   o.memory_limit_mb = c.memory_limit_mb;
   o.min_beta = c.min_beta;
+  if (c.residual != WEFM_RESIDUAL_PER_HALF_EDGE && c.residual != WEFM_RESIDUAL_PER_USE)
+    throw Error(Errc::invalid_argument, "option residual = " + std::to_string(c.residual) + " is not a wefm_residual");
+  o.residual = static_cast<Residual>(c.residual);
   validate_options(o);
   return o;
 }

@@ -28,6 +28,7 @@ program struct_layout
   call at('wefm_options threads', c_loc(o), c_loc(o%threads))
   call at('wefm_options memory_limit_mb', c_loc(o), c_loc(o%memory_limit_mb))
   call at('wefm_options min_beta', c_loc(o), c_loc(o%min_beta))
+  call at('wefm_options residual', c_loc(o), c_loc(o%residual))
 
   print '(a,i0)', 'wefm_mesh_info sizeof ', c_sizeof(i)
   call at('wefm_mesh_info struct_size', c_loc(i), c_loc(i%struct_size))

@@ -30,6 +30,10 @@ ERROR_INTERNAL = 99
 METHOD_GLOBAL = 0
 METHOD_ROLLOUT = 1
 
+# wefm_residual
+RESIDUAL_PER_HALF_EDGE = 0
+RESIDUAL_PER_USE = 1
+
 # wefm_edge_mode
 EDGE_AUTO = 0
 EDGE_FREE = 1
@@ -69,6 +73,7 @@ class Options(ctypes.Structure):
         ("threads", c_int),
         ("memory_limit_mb", c_double),
         ("min_beta", c_double),
+        ("residual", c_int),
     ]
 
 

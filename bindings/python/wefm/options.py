@@ -15,6 +15,7 @@ _ENUMS = {
     "solver": {"auto": S.SOLVER_AUTO, "cholmod": S.SOLVER_CHOLMOD, "eigen": S.SOLVER_EIGEN},
     "default_edge_mode": {n: i for i, n in enumerate(S.EDGE_MODE_NAMES)},
     "type": {"free": S.MESH_FREE, "transfinite": S.MESH_TRANSFINITE},
+    "residual": {"half-edge": S.RESIDUAL_PER_HALF_EDGE, "use": S.RESIDUAL_PER_USE},
 }
 
 

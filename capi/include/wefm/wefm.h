@@ -36,8 +36,9 @@
  * Threads.     Distinct handles may be used concurrently from different threads. One handle must not
  *              be used from two threads at once, with one exception: wefm_face_cancel() may be called
  *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
- *              The library starts no threads of its own unless wefm_options.threads > 1; the
- *              OpenBLAS under CHOLMOD keeps a thread pool from load time (OPENBLAS_NUM_THREADS=1 stops it).
+ *              The library starts no threads of its own. The OpenBLAS under CHOLMOD keeps a thread
+ *              pool from load time; a solve sets it to wefm_options.threads (0 = 1) threads,
+ *              process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether).
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or
@@ -163,6 +164,14 @@ typedef enum wefm_method {
   WEFM_METHOD_ROLLOUT = 1  /**< iterative roll-out with Gauss-Seidel sweeps (paper §4.1) */
 } wefm_method;
 
+/** wefm_options.residual: how the surface term sums the prediction errors (METHOD §5). */
+typedef enum wefm_residual {
+  WEFM_RESIDUAL_PER_HALF_EDGE = 0, /**< each half-edge's prediction error squared (default): every
+                                        triangle's shape is fitted; one-ring sparsity */
+  WEFM_RESIDUAL_PER_USE = 1        /**< eq. 7 as printed: one residual per use, the weighted sum of its
+                                        predictions' errors, which can cancel each other */
+} wefm_residual;
+
 /** How the two sides of a repeated edge (seam, slit, scar) are related in the domain. */
 typedef enum wefm_edge_mode {
   WEFM_EDGE_AUTO = 0,      /**< choose by score (METHOD §7 step 2) */
@@ -183,22 +192,23 @@ typedef enum wefm_solver {
 typedef struct wefm_options {
   size_t struct_size;        /**< set by wefm_options_init */
   double s;                  /**< target roll-out exponent in [0,2]: 0 conformal, 1 altitude, 2 area. Default 1 */
-  double k;                  /**< weight normalisation exponent, 1 or 0.5 (any value in [0,1]). Default 1 */
+  double k;                  /**< weight normalisation exponent, 1 or 0.5 (any value in [0,1]). Default 0.5 */
   double boundary_weight;    /**< mu, dimensionless weight of the boundary term (>= 0). Default 1 */
   int curvature_adjust;      /**< non-zero: scale beta by Theta/2pi at interior uses. Default 1 */
   int method;                /**< wefm_method. Default WEFM_METHOD_GLOBAL */
   int solver;                /**< wefm_solver. Default WEFM_SOLVER_AUTO */
   int default_edge_mode;     /**< wefm_edge_mode for repeated edges not set per edge. Default AUTO */
-  double s_step;             /**< largest continuation step in s (0 < s_step <= 2). Default 0.25 */
-  double rho_tolerance;      /**< stop the rho fixed point when max relative change < this. Default 1e-3 */
-  int max_rho_iterations;    /**< per s step; reaching it reports non-convergence. Default 20 */
+  double s_step;             /**< largest continuation step in s (0 < s_step <= 2). Default 1 */
+  double rho_tolerance;      /**< a continuation step ends when max relative rho change < this. Default 1e-3 */
+  int max_rho_iterations;    /**< Gauss-Newton iterations per s step; reaching it reports non-convergence. Default 20 */
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
   int max_rollout_sweeps;    /**< Default 10000 */
   double score_threshold;    /**< return after the conformal solve if its score >= this. Default 2 (never) */
   int auto_cut;              /**< non-zero: cut annuli and closed surfaces automatically. Default 0 */
-  int threads;               /**< worker threads for assembly/quality (0 = 1). Default 0 */
+  int threads;               /**< threads for the BLAS under CHOLMOD during a solve (0 = 1). Default 0 */
   double memory_limit_mb;    /**< refuse solves estimated above this (0 = no limit). Default 0 */
   double min_beta;           /**< altitude/base floor for degenerate triangles (> 0). Default 1e-3 */
+  int residual;              /**< wefm_residual. Default WEFM_RESIDUAL_PER_HALF_EDGE */
 } wefm_options;
 
 /**

@@ -16,7 +16,7 @@ int main(void) {
   FIELD(wefm_options, max_rho_iterations); FIELD(wefm_options, rollout_tolerance);
   FIELD(wefm_options, max_rollout_sweeps); FIELD(wefm_options, score_threshold);
   FIELD(wefm_options, auto_cut); FIELD(wefm_options, threads);
-  FIELD(wefm_options, memory_limit_mb); FIELD(wefm_options, min_beta);
+  FIELD(wefm_options, memory_limit_mb); FIELD(wefm_options, min_beta); FIELD(wefm_options, residual);
 
   SIZE(wefm_mesh_info);
   FIELD(wefm_mesh_info, struct_size); FIELD(wefm_mesh_info, vertices); FIELD(wefm_mesh_info, triangles);
