@@ -292,6 +292,7 @@ FlattenResult flatten(const FlattenInput& in) {
     recentre(best_z);
     rep.time.assembly += gn.time_assembly();
     gn_counters = gn.counters();
+    rep.iterative_iterations += gn.pcg_iterations();
   }
   rep.time.continuation = now() - t_cont;
   rep.s = early ? 0.0 : opt.s;

@@ -197,6 +197,61 @@ double GaussNewton::rescale(VectorXc& z, double s) const {
   return a;
 }
 
+bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
+                             Eigen::VectorXd& delta) {
+  // Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
+  // by a factorisation of an earlier Gauss-Newton matrix (the constraint preconditioner keeps every
+  // iterate in the null space of C). A fresh factorisation converges in one iteration; a stale one
+  // in a few, each costing one solve instead of a factorisation. Too many: refactorise.
+  const Index nr = static_cast<Index>(H.rows());
+  auto refactor = [&] {
+    SpMatR Hd = H;
+    for (Index i = 0; i < nr; ++i) Hd.coeffRef(i, i) += shift[i];
+    chol_.factorize(Hd);
+    factored_ = true;
+  };
+  if (!factored_ || chol_.size() != nr) refactor();
+  for (int round = 0; round < 2; ++round) {
+    Eigen::MatrixXd W;
+    Eigen::FullPivLU<Eigen::MatrixXd> S;
+    if (C.rows() > 0) {
+      W = chol_.solve(C.transpose());
+      S.compute(C * W);
+    }
+    auto precondition = [&](const Eigen::VectorXd& r) {
+      Eigen::VectorXd y = chol_.solve(r);
+      if (C.rows() > 0) y -= W * S.solve(C * y);
+      return y;
+    };
+    auto apply = [&](const Eigen::VectorXd& p) { return Eigen::VectorXd(H * p + shift.cwiseProduct(p)); };
+    delta.setZero(nr);
+    Eigen::VectorXd r = -g, zr = precondition(r), p = zr;
+    double rz = r.dot(zr);
+    const double rz0 = rz;
+    bool ok = rz0 <= 0;
+    for (int it = 0; it < 25 && !ok; ++it) {
+      const Eigen::VectorXd q = apply(p);
+      const double pq = p.dot(q);
+      if (!(pq > 0)) break;
+      const double a = rz / pq;
+      delta += a * p;
+      r -= a * q;
+      zr = precondition(r);
+      const double rz_new = r.dot(zr);
+      ++pcg_iterations_;
+      if (!(rz_new > 1e-16 * rz0)) {
+        ok = true;
+        break;
+      }
+      p = zr + (rz_new / rz) * p;
+      rz = rz_new;
+    }
+    if (ok && delta.allFinite()) return true;
+    if (round == 0) refactor();
+  }
+  return false;
+}
+
 double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
   double t0 = now();
   Eigen::VectorXd g;
@@ -245,15 +300,11 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
   const double dmean = diag.mean() > 0 ? diag.mean() : 1.0;
   const std::vector<double> rho_before = compute_rho(tp_, c_, z);
   for (int attempt = 0; attempt < 8; ++attempt) {
-    SpMatR Hd = H;
-    for (Index i = 0; i < nr; ++i) Hd.coeffRef(i, i) += lambda_ * diag[i] + 1e-12 * dmean;
-    chol_.factorize(Hd);
-    Eigen::VectorXd delta = chol_.solve(-gy);
-    if (m > 0) {
-      const Eigen::MatrixXd W = chol_.solve(C.transpose());
-      const Eigen::MatrixXd S = C * W;
-      const Eigen::VectorXd mu = S.fullPivLu().solve(C * delta);
-      delta -= W * mu;
+    const Eigen::VectorXd shift = (lambda_ * diag).array() + 1e-12 * dmean;
+    Eigen::VectorXd delta;
+    if (!solve_step(H, shift, gy, C, delta)) {
+      lambda_ *= 10;
+      continue;
     }
     VectorXc dy(nr / 2);
     for (Index k = 0; k < nr / 2; ++k) dy[k] = Complex(delta[2 * k], delta[2 * k + 1]);

@@ -45,7 +45,13 @@ TEST_CASE("continuation analyses the pattern once whatever the number of steps")
     CAPTURE(step);
     CHECK(r.report.converged);
     CHECK(r.report.counters.analyses == 2);
-    CHECK(r.report.counters.factorizations > 2);
+    // Later Gauss-Newton steps reuse an earlier factorisation as a preconditioner: at most one
+    // real factorisation per iteration, usually far fewer, and conjugate-gradient iterations show it.
+    CHECK(r.report.counters.factorizations >= 2);
+    CHECK(r.report.counters.factorizations <= 1 + r.report.rho_iterations);
+    CHECK(r.report.iterative_iterations > 0);
+    MESSAGE("s_step " << step << ": " << r.report.rho_iterations << " Gauss-Newton iterations, " << r.report.counters.factorizations
+                      << " factorisations, " << r.report.iterative_iterations << " PCG iterations");
     CHECK(r.steps.size() == static_cast<size_t>(std::lround(1.0 / step)));
   }
 }

@@ -78,11 +78,14 @@ class GaussNewton {
   }
 
   FactorCounters& counters() { return chol_.counters(); }
+  std::int64_t pcg_iterations() const { return pcg_iterations_; }
   double time_assembly() const { return t_assembly_; }
 
  private:
   // One damped step; returns the max relative rho change it made.
   double step(VectorXc& z, double s, double& energy_out);
+  bool solve_step(const SpMatR& H, const Eigen::VectorXd& shift, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
+                  Eigen::VectorXd& delta);
   void linearise(const VectorXc& z, double s, Eigen::VectorXd& g, double& energy);
   void add_block(Index a, Index b, const double* Ja, const double* Jb);
   template <class F>
@@ -104,6 +107,8 @@ class GaussNewton {
   Complex center_{0, 0};
   SparseCholeskyReal chol_;
   double lambda_ = 1e-6;
+  bool factored_ = false;
+  std::int64_t pcg_iterations_ = 0;
   double t_assembly_ = 0;
 };
 
