@@ -157,9 +157,21 @@ void Face::solve(const ProgressFn& progress, const std::atomic<bool>* cancel) {
   r.report.time.topology = t_topo;
   r.report.time.total += t_topo;
   result_ = std::move(r);
-  if (!result_->report.converged)
-    fail(Errc::not_converged, "the rho fixed point did not converge within max_rho_iterations at some s step (last relative change " +
-                                  std::to_string(result_->report.rho_change) + "); the result reached is available");
+  if (!result_->report.converged) {
+    std::string where = "a continuation step";
+    if (!result_->steps.empty()) {
+      const StepInfo* bad = &result_->steps.back();
+      for (const StepInfo& st : result_->steps)
+        if (st.rho_change >= options_.rho_tolerance) {
+          bad = &st;
+          break;
+        }
+      where = "the step to s = " + std::to_string(bad->s) + " (" + std::to_string(bad->iterations) + " iterations, relative rho change " +
+              std::to_string(bad->rho_change) + ")";
+    }
+    fail(Errc::not_converged, "the continuation did not converge within max_rho_iterations at " + where +
+                                  "; the best layout reached (s = " + std::to_string(result_->report.s) + ") is available");
+  }
 }
 
 const FlattenResult& Face::result() const {

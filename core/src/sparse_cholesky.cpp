@@ -41,6 +41,10 @@ struct SparseCholeskyT<Scalar>::Impl {
 template <class Scalar>
 SparseCholeskyT<Scalar>::SparseCholeskyT(Backend backend) : impl_(std::make_unique<Impl>()) {
   impl_->use_cholmod = have_cholmod() && backend != Backend::Eigen;
+#ifdef WEFM_HAVE_CHOLMOD
+  // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
+  impl_->cholmod.cholmod().print = 0;
+#endif
   if (backend == Backend::Cholmod && !have_cholmod()) fail(Errc::unsupported, "this build of wefm has no CHOLMOD (built with WEFM_WITH_SUITESPARSE=OFF)");
 }
 
