@@ -46,7 +46,9 @@ for stage in $stages; do
         -DWEFM_BUILD_APPS=OFF -DWEFM_BUILD_BINDINGS=OFF >/dev/null
       cmake --build build/tsan -j"$jobs" --target wefm_concurrency_test
       # BLAS/OpenMP threads inside CHOLMOD are not instrumented: keep them to one.
-      OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+      # libgomp (CHOLMOD's OpenMP) is not instrumented either: tests/robustness/tsan.supp.
+      OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 \
+        TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/tests/robustness/tsan.supp" \
         build/tsan/tests/robustness/wefm_concurrency_test
       ;;
     fuzz)
