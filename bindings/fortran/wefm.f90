@@ -84,6 +84,7 @@ module wefm
     real(c_double) :: time_topology, time_coefficients, time_assembly, time_analysis, &
                       time_factorization, time_solve, time_continuation, time_quality, time_total
     real(c_double) :: peak_memory_mb
+    integer(c_int32_t) :: min_beta_raised
   end type wefm_report
 
   type, bind(C) :: wefm_mesh_options

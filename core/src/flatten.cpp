@@ -46,7 +46,9 @@ double peak_memory_mb() {
   return 0.0;
 }
 
-FlattenResult flatten(const FlattenInput& in) {
+namespace {
+
+FlattenResult flatten_attempt(const FlattenInput& in) {
   const double t_start = now();
   const TriMesh& mesh = *in.mesh;
   const Topology& tp = *in.topo;
@@ -332,5 +334,32 @@ FlattenResult flatten(const FlattenInput& in) {
   return res;
 }
 
-}  // namespace wefm
+}  // namespace
 
+FlattenResult flatten(const FlattenInput& in) {
+  FlattenResult res = flatten_attempt(in);
+  const Quality& q = res.report.quality;
+  // A domain with flips or a self-overlapping boundary is unusable for meshing. Needle and
+  // zero-area triangles drive that (their tiny altitude/base ratios get huge weights): retry once
+  // with a stronger floor on beta and keep whichever layout scores better. Measured on the real
+  // sample: the bottle thread face goes from 4 boundary overlaps to a valid layout (score 0.37);
+  // valid layouts never take this path, so it costs nothing on them.
+  const double floor = 0.05;
+  if (in.options.method == Method::Global && (q.flips > 0 || q.boundary_intersections > 0) && in.options.min_beta < floor) {
+    FlattenInput retry = in;
+    retry.options.min_beta = floor;
+    try {
+      FlattenResult alt = flatten_attempt(retry);
+      if (alt.report.quality.score > res.report.quality.score) {
+        alt.report.min_beta_raised = true;
+        alt.report.time.total += res.report.time.total;
+        res = std::move(alt);
+      }
+    } catch (const Error& e) {
+      if (e.code() == Errc::cancelled) throw;
+    }
+  }
+  return res;
+}
+
+}  // namespace wefm

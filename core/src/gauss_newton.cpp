@@ -207,10 +207,15 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
   auto refactor = [&] {
     SpMatR Hd = H;
     for (Index i = 0; i < nr; ++i) Hd.coeffRef(i, i) += shift[i];
+    const double t0 = now();
     chol_.factorize(Hd);
+    t_factor_ = now() - t0;
     factored_ = true;
   };
-  if (!factored_ || chol_.size() != nr) refactor();
+  // Refactorise when the last step's iterations cost more than a factorisation would have.
+  const FactorCounters& fc = chol_.counters();
+  const double t_solve = fc.solves > 0 ? fc.time_solve / static_cast<double>(fc.solves) : 0.0;
+  if (!factored_ || chol_.size() != nr || last_pcg_ * t_solve > t_factor_) refactor();
   for (int round = 0; round < 2; ++round) {
     Eigen::MatrixXd W;
     Eigen::FullPivLU<Eigen::MatrixXd> S;
@@ -225,6 +230,7 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
     };
     auto apply = [&](const Eigen::VectorXd& p) { return Eigen::VectorXd(H * p + shift.cwiseProduct(p)); };
     delta.setZero(nr);
+    last_pcg_ = 0;
     Eigen::VectorXd r = -g, zr = precondition(r), p = zr;
     double rz = r.dot(zr);
     const double rz0 = rz;
@@ -239,6 +245,7 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
       zr = precondition(r);
       const double rz_new = r.dot(zr);
       ++pcg_iterations_;
+      last_pcg_ = it + 1;
       if (!(rz_new > 1e-16 * rz0)) {
         ok = true;
         break;

@@ -81,6 +81,7 @@ program struct_layout
   call at('wefm_report time_quality', c_loc(r), c_loc(r%time_quality))
   call at('wefm_report time_total', c_loc(r), c_loc(r%time_total))
   call at('wefm_report peak_memory_mb', c_loc(r), c_loc(r%peak_memory_mb))
+  call at('wefm_report min_beta_raised', c_loc(r), c_loc(r%min_beta_raised))
 
   print '(a,i0)', 'wefm_mesh_options sizeof ', c_sizeof(m)
   call at('wefm_mesh_options struct_size', c_loc(m), c_loc(m%struct_size))

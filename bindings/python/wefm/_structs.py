@@ -134,6 +134,7 @@ class Report(ctypes.Structure):
         ("time_quality", c_double),
         ("time_total", c_double),
         ("peak_memory_mb", c_double),
+        ("min_beta_raised", c_int32),
     ]
 
 

@@ -550,6 +550,8 @@ typedef struct wefm_report {
   double time_topology, time_coefficients, time_assembly, time_analysis, time_factorization,
          time_solve, time_continuation, time_quality, time_total; /**< seconds */
   double peak_memory_mb;         /**< process peak resident set size after the solve (0 if unknown) */
+  int32_t min_beta_raised;       /**< non-zero: the first layout had flips or boundary overlaps and this
+                                      one, solved again with min_beta 0.05, scored better */
 } wefm_report;
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */

@@ -34,6 +34,7 @@ struct SolveReport {
   FactorCounters counters;
   std::int64_t iterative_iterations = 0;
   bool auto_cut = false;
+  bool min_beta_raised = false;  // the first layout was invalid; this one used a stronger beta floor
   Index degenerate_triangles = 0;
   Timings time;
   double peak_memory_mb = 0;
