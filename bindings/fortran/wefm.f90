@@ -85,6 +85,7 @@ module wefm
                       time_factorization, time_solve, time_continuation, time_quality, time_total
     real(c_double) :: peak_memory_mb
     integer(c_int32_t) :: min_beta_raised
+    real(c_double) :: boundary_unwind
   end type wefm_report
 
   type, bind(C) :: wefm_mesh_options

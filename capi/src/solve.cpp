@@ -145,6 +145,7 @@ WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* re
     r.auto_cut = s.auto_cut ? 1 : 0;
     r.degenerate_triangles = s.degenerate_triangles;
     r.min_beta_raised = s.min_beta_raised ? 1 : 0;
+    r.boundary_unwind = s.unwind;
     r.time_topology = s.time.topology;
     r.time_coefficients = s.time.coefficients;
     r.time_assembly = s.time.assembly;

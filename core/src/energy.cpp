@@ -63,7 +63,7 @@ SpMatC assemble_surface_operator(const Topology& tp, const Coefficients& c, cons
   return A;
 }
 
-SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Coefficients& c, double mu) {
+SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Coefficients& c, double mu, double unwind) {
   const Index n = tp.use_count;
   std::vector<Eigen::Triplet<Complex>> trip;
   Index row = 0;
@@ -80,7 +80,11 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
       if (!(lbar > 0)) continue;
       // Goal turning angle pi - theta with theta the face's 3D angle at this use: p = 0 exactly when
       // the UV corner has that angle and its two segments the 3D length ratio.
-      const double phi = 0.5 * (kPi - c.use_angle[static_cast<size_t>(u)]);
+      double turn = kPi - c.use_angle[static_cast<size_t>(u)];
+      // Unwinding: gentle turns (below 30 degrees) aim at a fraction of their 3D value, corners
+      // keep theirs, so the loop still closes while long curved sides straighten.
+      if (unwind < 1.0 && std::abs(turn) < kPi / 6) turn *= unwind;
+      const double phi = 0.5 * turn;
       const double scale = std::sqrt(mu / lbar);
       const Complex cm = scale * (Lp / lbar) * std::polar(1.0, phi), cp = scale * (Lm / lbar) * std::polar(1.0, -phi);
       trip.emplace_back(row, up, cm);

@@ -121,7 +121,8 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   // --- Conformal solve with the two-step gauge --------------------------------------------------
   stage.check(0.05, "assembly");
   t0 = now();
-  const SpMatC B = assemble_boundary_operator(mesh, tp, coef, opt.boundary_weight);
+  const SpMatC B = assemble_boundary_operator(mesh, tp, coef, in.boundary_weight_override > 0 ? in.boundary_weight_override : opt.boundary_weight,
+                                               in.unwind);
   const SpMatC* Bp = B.rows() ? &B : nullptr;
   std::vector<double> rho;  // empty: s = 0
   const SpMatC A = assemble_surface_operator(tp, coef, compute_sigma(coef, rho, 0.0), opt.k, opt.residual);
@@ -338,26 +339,40 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
 
 FlattenResult flatten(const FlattenInput& in) {
   FlattenResult res = flatten_attempt(in);
-  const Quality& q = res.report.quality;
-  // A domain with flips or a self-overlapping boundary is unusable for meshing. Needle and
-  // zero-area triangles drive that (their tiny altitude/base ratios get huge weights): retry once
-  // with a stronger floor on beta and keep whichever layout scores better. Measured on the real
-  // sample: the bottle thread face goes from 4 boundary overlaps to a valid layout (score 0.37);
-  // valid layouts never take this path, so it costs nothing on them.
-  const double floor = 0.05;
-  if (in.options.method == Method::Global && (q.flips > 0 || q.boundary_intersections > 0) && in.options.min_beta < floor) {
-    FlattenInput retry = in;
-    retry.options.min_beta = floor;
+  auto invalid = [](const FlattenResult& r) { return r.report.quality.flips > 0 || r.report.quality.boundary_intersections > 0; };
+  auto try_instead = [&](FlattenInput alt_in, auto mark) {
     try {
-      FlattenResult alt = flatten_attempt(retry);
+      FlattenResult alt = flatten_attempt(alt_in);
       if (alt.report.quality.score > res.report.quality.score) {
-        alt.report.min_beta_raised = true;
+        mark(alt.report);
         alt.report.time.total += res.report.time.total;
         res = std::move(alt);
       }
     } catch (const Error& e) {
       if (e.code() == Errc::cancelled) throw;
     }
+  };
+  if (in.options.method != Method::Global || !invalid(res)) return res;
+  // A domain with flips or a self-overlapping boundary is unusable for meshing; valid layouts never
+  // take the paths below, so they cost nothing on them.
+  // 1. Needle and zero-area triangles (tiny altitude/base, huge weights) drive most flips: retry with
+  //    a stronger floor on beta. Real sample: the bottle thread face, 4 overlaps -> valid (0.37).
+  const double floor = 0.05;
+  if (in.options.min_beta < floor) {
+    FlattenInput alt = in;
+    alt.options.min_beta = floor;
+    try_instead(alt, [](SolveReport& r) { r.min_beta_raised = true; });
+  }
+  // 2. A face whose low-distortion layout coils over itself (a helical strip: its sides curve one
+  //    way for more than a turn) needs its sides straightened: the boundary term, strengthened,
+  //    aims gentle turns at a fraction of their 3D value; the least unwinding that gives a valid
+  //    layout wins.
+  for (double unwind : {0.5, 0.25, 0.0}) {
+    if (!invalid(res)) break;
+    FlattenInput alt = in;
+    alt.unwind = unwind;
+    alt.boundary_weight_override = std::max(10.0, in.options.boundary_weight);
+    try_instead(alt, [unwind](SolveReport& r) { r.unwind = unwind; });
   }
   return res;
 }

@@ -95,3 +95,16 @@ TEST_CASE("a caller's pin holds through the continuation, with and without a sea
     CHECK(std::abs(f.result().uv[use] - Complex(3, 4)) < 1e-9);
   }
 }
+
+TEST_CASE("a helicoid strip of two turns, whose low-distortion layout coils over itself, comes out valid") {
+  // r in [1, 1.5], two turns, pitch 0.2: its sides curve one way for more than a full turn.
+  const TriMesh strip = test::grid(120, 4, [](double u, double v) {
+    const double t = 4 * kPi * u, r = 1.0 + 0.5 * v;
+    return Vec3(r * std::cos(t), r * std::sin(t), 0.2 * t);
+  });
+  const auto r = test::solve(strip, Options());
+  MESSAGE("helicoid strip: score " << r.report.quality.score << ", unwind " << r.report.unwind);
+  CHECK(r.report.quality.flips == 0);
+  CHECK(r.report.quality.boundary_intersections == 0);
+  CHECK(r.report.unwind < 1.0);  // the first layout overlapped: the straightened one was kept
+}

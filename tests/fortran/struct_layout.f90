@@ -82,6 +82,7 @@ program struct_layout
   call at('wefm_report time_total', c_loc(r), c_loc(r%time_total))
   call at('wefm_report peak_memory_mb', c_loc(r), c_loc(r%peak_memory_mb))
   call at('wefm_report min_beta_raised', c_loc(r), c_loc(r%min_beta_raised))
+  call at('wefm_report boundary_unwind', c_loc(r), c_loc(r%boundary_unwind))
 
   print '(a,i0)', 'wefm_mesh_options sizeof ', c_sizeof(m)
   call at('wefm_mesh_options struct_size', c_loc(m), c_loc(m%struct_size))

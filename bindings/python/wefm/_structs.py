@@ -135,6 +135,7 @@ class Report(ctypes.Structure):
         ("time_total", c_double),
         ("peak_memory_mb", c_double),
         ("min_beta_raised", c_int32),
+        ("boundary_unwind", c_double),
     ]
 
 

@@ -200,7 +200,7 @@ typedef struct wefm_options {
   int default_edge_mode;     /**< wefm_edge_mode for repeated edges not set per edge. Default AUTO */
   double s_step;             /**< largest continuation step in s (0 < s_step <= 2). Default 1 */
   double rho_tolerance;      /**< a continuation step ends when max relative rho change < this. Default 1e-3 */
-  int max_rho_iterations;    /**< Gauss-Newton iterations per s step; reaching it reports non-convergence. Default 20 */
+  int max_rho_iterations;    /**< Gauss-Newton iterations per s step; reaching it reports non-convergence. Default 50 */
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
   int max_rollout_sweeps;    /**< Default 10000 */
   double score_threshold;    /**< return after the conformal solve if its score >= this. Default 2 (never) */
@@ -552,6 +552,8 @@ typedef struct wefm_report {
   double peak_memory_mb;         /**< process peak resident set size after the solve (0 if unknown) */
   int32_t min_beta_raised;       /**< non-zero: the first layout had flips or boundary overlaps and this
                                       one, solved again with min_beta 0.05, scored better */
+  double boundary_unwind;        /**< 1, or < 1 when the first layout overlapped itself and this one aims
+                                      gentle boundary turns at that fraction of their 3D value */
 } wefm_report;
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */

@@ -41,7 +41,7 @@ int main(void) {
   FIELD(wefm_report, time_analysis); FIELD(wefm_report, time_factorization);
   FIELD(wefm_report, time_solve); FIELD(wefm_report, time_continuation);
   FIELD(wefm_report, time_quality); FIELD(wefm_report, time_total); FIELD(wefm_report, peak_memory_mb);
-  FIELD(wefm_report, min_beta_raised);
+  FIELD(wefm_report, min_beta_raised); FIELD(wefm_report, boundary_unwind);
 
   SIZE(wefm_mesh_options);
   FIELD(wefm_mesh_options, struct_size); FIELD(wefm_mesh_options, type); FIELD(wefm_mesh_options, size);

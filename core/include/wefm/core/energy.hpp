@@ -22,8 +22,10 @@ std::vector<double> compute_weights(const Topology& topo, const Coefficients& c,
 SpMatC assemble_surface_operator(const Topology& topo, const Coefficients& c, const std::vector<Complex>& sigma, double k,
                                  Residual form);
 
-// Boundary term operator (eq. 10) with rows already scaled by sqrt(mu / l_bar).
-SpMatC assemble_boundary_operator(const TriMesh& mesh, const Topology& topo, const Coefficients& c, double mu);
+// Boundary term operator (eq. 10) with rows already scaled by sqrt(mu / l_bar). `unwind` < 1 scales
+// the goal turning angles of gentle turns (under 30 degrees) toward straight, corners unchanged.
+SpMatC assemble_boundary_operator(const TriMesh& mesh, const Topology& topo, const Coefficients& c, double mu,
+                                  double unwind = 1.0);
 
 // K = A^H A (+ B^H B). Full Hermitian matrix.
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B);

@@ -35,6 +35,7 @@ struct SolveReport {
   std::int64_t iterative_iterations = 0;
   bool auto_cut = false;
   bool min_beta_raised = false;  // the first layout was invalid; this one used a stronger beta floor
+  double unwind = 1.0;           // < 1: the first layout overlapped itself; this one straightened gentle boundary turns
   Index degenerate_triangles = 0;
   Timings time;
   double peak_memory_mb = 0;
@@ -59,6 +60,8 @@ struct FlattenInput {
   std::map<Index, EdgeMode> edge_modes; // forced modes per edge
   ProgressFn progress;
   const std::atomic<bool>* cancel = nullptr;
+  double unwind = 1.0;                   // see assemble_boundary_operator (set by flatten's own retries)
+  double boundary_weight_override = 0;   // > 0: replaces options.boundary_weight (the same retries)
 };
 
 // Throws Error on failure; Error(not_converged) carries no result, so callers wanting the partial
