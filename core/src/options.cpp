@@ -12,7 +12,8 @@ void validate_options(const Options& o) {
   if (!(o.s >= 0 && o.s <= 2)) bad("s = " + std::to_string(o.s) + " is outside [0, 2]");
   if (!(o.k >= 0 && o.k <= 1)) bad("k = " + std::to_string(o.k) + " is outside [0, 1]");
   if (!(o.boundary_weight >= 0 && std::isfinite(o.boundary_weight))) bad("boundary_weight must be finite and >= 0");
-  if (!(o.s_step > 0 && o.s_step <= 2)) bad("s_step must be in (0, 2]");
+  // A floor on s_step: the continuation takes s / s_step steps.
+  if (!(o.s_step >= 1e-3 && o.s_step <= 2)) bad("s_step must be in [0.001, 2]");
   if (!(o.rho_tolerance > 0)) bad("rho_tolerance must be > 0");
   if (o.max_rho_iterations < 1) bad("max_rho_iterations must be >= 1");
   if (!(o.rollout_tolerance > 0)) bad("rollout_tolerance must be > 0");

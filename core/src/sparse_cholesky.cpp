@@ -96,6 +96,10 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
   counters_.time_factorization += now() - t0;
   if (info != Eigen::Success) {
     pattern_outer_.clear();  // force a fresh analysis next time
+#ifdef WEFM_HAVE_CHOLMOD
+    if (impl_->use_cholmod && impl_->cholmod.cholmod().status == CHOLMOD_OUT_OF_MEMORY)
+      fail(Errc::out_of_memory, "out of memory in the sparse Cholesky factorisation");
+#endif
     fail(Errc::not_positive_definite, "the energy matrix is not positive definite (a use with no valid prediction, or a face whose triangles are all degenerate)");
   }
 }

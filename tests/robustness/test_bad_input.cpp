@@ -366,6 +366,7 @@ TEST_CASE("options: every out-of-range value is INVALID_ARGUMENT naming the opti
       {"default_edge_mode", [&](wefm_options& o) { o.default_edge_mode = 5; }},
       {"s_step", [&](wefm_options& o) { o.s_step = 0; }},
       {"s_step", [&](wefm_options& o) { o.s_step = nan; }},
+      {"s_step", [&](wefm_options& o) { o.s_step = 1e-12; }},  // would take 1e12 continuation steps
       {"rho_tolerance", [&](wefm_options& o) { o.rho_tolerance = 0; }},
       {"max_rho_iterations", [&](wefm_options& o) { o.max_rho_iterations = 0; }},
       {"rollout_tolerance", [&](wefm_options& o) { o.rollout_tolerance = nan; }},

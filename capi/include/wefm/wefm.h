@@ -198,7 +198,7 @@ typedef struct wefm_options {
   int method;                /**< wefm_method. Default WEFM_METHOD_GLOBAL */
   int solver;                /**< wefm_solver. Default WEFM_SOLVER_AUTO */
   int default_edge_mode;     /**< wefm_edge_mode for repeated edges not set per edge. Default AUTO */
-  double s_step;             /**< largest continuation step in s (0 < s_step <= 2). Default 1 */
+  double s_step;             /**< largest continuation step in s (0.001 <= s_step <= 2). Default 1 */
   double rho_tolerance;      /**< a continuation step ends when max relative rho change < this. Default 1e-3 */
   int max_rho_iterations;    /**< Gauss-Newton iterations per s step; reaching it reports non-convergence. Default 50 */
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
@@ -526,7 +526,8 @@ WEFM_API wefm_status wefm_face_get_edge_scores(wefm_face* face, int32_t edge, do
 /** Quality and cost of the last solve (wefm_face_get_report()); fill with wefm_report_init() first. */
 typedef struct wefm_report {
   size_t struct_size;            /**< set by wefm_report_init() */
-  double score;                  /**< METHOD §8: 1 is perfect; -1 if any flip; -2 if the boundary self-intersects */
+  double score;                  /**< METHOD §8: area-weighted mean of r^2 in [0, 1] (1 is perfect), minus 1
+                                      if any triangle is flipped, minus 2 if the boundary self-intersects */
   int64_t flipped_triangles;     /**< triangles with negative UV area */
   int64_t boundary_intersections; /**< crossing pairs of boundary segments in UV */
   double area_distortion_mean;   /**< 3D-area weighted mean of |log(UV area / 3D area)| after area normalisation */
