@@ -265,6 +265,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
     keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
+    kkt.release();  // the s = 0 factor is not needed any more: do not hold two factors at once
     GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend);
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
     gn.set_scale_center(gauge.center);

@@ -37,22 +37,25 @@ struct SparseCholeskyT<Scalar>::Impl {
   Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> cholmod;
 #endif
   Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+
+  explicit Impl(bool cholmod_wanted) : use_cholmod(cholmod_wanted) {
+#ifdef WEFM_HAVE_CHOLMOD
+    // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
+    cholmod.cholmod().print = 0;
+    if (std::is_same<Scalar, double>::value) {
+      // The real Gauss-Newton matrix has 2x2 blocks, which AMD's supervariables absorb; CHOLMOD's
+      // default also tries METIS when AMD's fill looks high, and that try cost 27 s of analysis at
+      // 1M triangles (loaded machine) against under 1 s for AMD alone.
+      cholmod.cholmod().nmethods = 1;
+      cholmod.cholmod().method[0].ordering = CHOLMOD_AMD;
+    }
+#endif
+  }
 };
 
 template <class Scalar>
-SparseCholeskyT<Scalar>::SparseCholeskyT(Backend backend) : impl_(std::make_unique<Impl>()) {
-  impl_->use_cholmod = have_cholmod() && backend != Backend::Eigen;
-#ifdef WEFM_HAVE_CHOLMOD
-  // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
-  impl_->cholmod.cholmod().print = 0;
-  if (std::is_same<Scalar, double>::value) {
-    // The real Gauss-Newton matrix has 2x2 blocks, which AMD's supervariables absorb; CHOLMOD's
-    // default also tries METIS when AMD's fill looks high, and that try cost 27 s of analysis at
-    // 1M triangles (loaded machine) against under 1 s for AMD alone.
-    impl_->cholmod.cholmod().nmethods = 1;
-    impl_->cholmod.cholmod().method[0].ordering = CHOLMOD_AMD;
-  }
-#endif
+SparseCholeskyT<Scalar>::SparseCholeskyT(Backend backend)
+    : impl_(std::make_unique<Impl>(have_cholmod() && backend != Backend::Eigen)) {
   if (backend == Backend::Cholmod && !have_cholmod()) fail(Errc::unsupported, "this build of wefm has no CHOLMOD (built with WEFM_WITH_SUITESPARSE=OFF)");
 }
 
@@ -102,6 +105,14 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
 #endif
     fail(Errc::not_positive_definite, "the energy matrix is not positive definite (a use with no valid prediction, or a face whose triangles are all degenerate)");
   }
+}
+
+template <class Scalar>
+void SparseCholeskyT<Scalar>::release() {
+  impl_ = std::make_unique<Impl>(impl_->use_cholmod);
+  pattern_outer_.clear();
+  pattern_inner_.clear();
+  n_ = 0;
 }
 
 template <class Scalar>

@@ -36,6 +36,12 @@ class PartitionedKKT {
   void prepare(const std::vector<Index>& uses, const Eigen::VectorXd* eta);
 
   FactorCounters& counters() { return chol_.counters(); }
+  // Frees the factorisation and the caches (before the continuation builds its own).
+  void release() {
+    chol_.release();
+    unit_.clear();
+    cache_valid_ = false;
+  }
 
  private:
   struct Column {

@@ -39,6 +39,8 @@ class SparseCholeskyT {
   // Throws Error(not_positive_definite) when the matrix is not positive definite.
   void factorize(const Matrix& K);
   Dense solve(const Dense& rhs);
+  // Frees the factor (counters stay); the next factorize analyses again.
+  void release();
   Index size() const { return n_; }
   FactorCounters& counters() { return counters_; }
 
