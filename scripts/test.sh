@@ -35,10 +35,11 @@ for stage in $stages; do
       # an uninstrumented interpreter: the ASan runtime must be preloaded, and the interpreter's own
       # allocations at exit are not ours (leak checking stays on for everything else).
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+      export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
       ctest --preset sanitize -j"$jobs" -LE python
       asan_rt=$(${CC:-gcc} -print-file-name=libasan.so)
       LD_PRELOAD="$asan_rt" ASAN_OPTIONS=detect_leaks=0 ctest --preset sanitize -L python
-      unset UBSAN_OPTIONS
+      unset UBSAN_OPTIONS LSAN_OPTIONS
       ;;
     tsan)
       echo "== ThreadSanitizer: concurrency test"
