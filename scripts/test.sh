@@ -37,8 +37,11 @@ for stage in $stages; do
       export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
       export LSAN_OPTIONS="suppressions=$PWD/tests/lsan.supp:print_suppressions=0"
       ctest --preset sanitize -j"$jobs" -LE python
+      # libstdc++ is preloaded too: python does not link it, and without it ASan's __cxa_throw
+      # interceptor finds no real __cxa_throw when the library throws (a CHECK failure, not a bug).
       asan_rt=$(${CC:-gcc} -print-file-name=libasan.so)
-      LD_PRELOAD="$asan_rt" ASAN_OPTIONS=detect_leaks=0 ctest --preset sanitize -L python
+      cxx_rt=$(${CXX:-g++} -print-file-name=libstdc++.so)
+      LD_PRELOAD="$asan_rt $cxx_rt" ASAN_OPTIONS=detect_leaks=0 ctest --preset sanitize -L python
       unset UBSAN_OPTIONS LSAN_OPTIONS
       ;;
     tsan)
