@@ -49,7 +49,7 @@ void print_summary(const std::string& input, const FaceOutcome& o) {
                 static_cast<long long>(r.boundary_intersections));
     std::printf("  distortion  area mean %.4g max %.4g   angle mean %.4g max %.4g\n", r.area_distortion_mean,
                 r.area_distortion_max, r.angle_distortion_mean, r.angle_distortion_max);
-    std::printf("  solve       %s method, s %.3g reached, %s, %d steps, %d rho iterations\n", method_name(r.method), r.s,
+    std::printf("  solve       %s method, s %.3g reached, %s, %d steps, %d Gauss-Newton iterations\n", method_name(r.method), r.s,
                 r.converged ? "converged" : "NOT converged", r.s_steps, r.rho_iterations);
     std::printf("  time        %.3f s (read %.3f, solve %.3f of which factorisation %.3f, write %.3f)",
                 o.time.total, o.time.read, o.time.solve, r.time_factorization, o.time.write);
