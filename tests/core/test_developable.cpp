@@ -1,4 +1,7 @@
 // METHOD §10: developable faces flatten with zero distortion; the paper's pyramid example.
+#include <cmath>
+#include <map>
+
 #include "solve_helpers.hpp"
 
 using namespace wefm;
@@ -79,4 +82,44 @@ TEST_CASE("automatic mode picks periodic for the open cylinder's seam") {
   CHECK(r.edge_modes[0] == EdgeMode::Periodic);
   CHECK(sc[2] >= sc[1] - 1e-12);
   CHECK(sc[2] > sc[3]);
+}
+
+TEST_CASE("a helical strip of 2.5 turns on a cylinder, seamed along its length, flattens exactly; automatic picks periodic") {
+  // The strip t in [0, 2.5 turns], height one pitch: its upper edge over turn k is its lower edge
+  // over turn k + 1, so those vertices are shared and the shared helix is a seam along its length.
+  const int per = 48, n = 120, m = 4;
+  const double pitch = 0.6;
+  TriMesh mesh;
+  std::map<std::pair<int, int>, Index> id;
+  auto vid = [&](int i, int j) {
+    if (j == m && i + per <= n) i += per, j = 0;
+    auto it = id.find({i, j});
+    if (it != id.end()) return it->second;
+    const double t = 2 * kPi * i / per;
+    mesh.vertices.emplace_back(std::cos(t), std::sin(t), pitch * i / per + pitch * j / m);
+    return id[{i, j}] = static_cast<Index>(mesh.vertices.size() - 1);
+  };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Index a = vid(i, j), b = vid(i + 1, j), c = vid(i, j + 1), d = vid(i + 1, j + 1);
+      mesh.triangles.push_back({a, b, d});
+      mesh.triangles.push_back({a, d, c});
+    }
+  std::vector<std::pair<Index, Index>> seam;
+  for (int i = per; i < n; ++i) seam.emplace_back(vid(i, 0), vid(i + 1, 0));
+  const auto r = test::solve(mesh, test::with_s(1.0), seam, EdgeMode::Auto);
+  // The repeated edge is the one the automatic decision scored.
+  size_t e = r.edge_scores.size();
+  for (size_t k = 0; k < r.edge_scores.size(); ++k)
+    if (std::isfinite(r.edge_scores[k][static_cast<size_t>(EdgeMode::Periodic)])) e = k;
+  REQUIRE(e < r.edge_scores.size());
+  const auto& sc = r.edge_scores[e];
+  MESSAGE("helical strip: free " << sc[static_cast<size_t>(EdgeMode::Free)] << ", periodic " << sc[static_cast<size_t>(EdgeMode::Periodic)]
+                                 << ", rotational " << sc[static_cast<size_t>(EdgeMode::Rotational)] << ", scar "
+                                 << sc[static_cast<size_t>(EdgeMode::Scar)] << "; score " << r.report.quality.score);
+  CHECK(r.edge_modes[e] == EdgeMode::Periodic);
+  CHECK(r.report.quality.flips == 0);
+  CHECK(r.report.quality.boundary_intersections == 0);
+  CHECK(r.report.quality.angle_max < 1 + 1e-8);
+  CHECK(r.report.quality.area_max < 1e-8);
 }
