@@ -69,22 +69,35 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
   Index row = 0;
   const double inv = 1.0 / c.length_scale;
   auto pos = [&](Index u) -> const Vec3& { return m.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])]; };
-  for (const auto& lu : tp.loop_uses) {
+  for (size_t d = 0; d < tp.loop_uses.size(); ++d) {
+    const auto& lu = tp.loop_uses[d];
     const size_t nl = lu.size();
     if (nl < 3 || mu <= 0) continue;
     std::vector<double> seg(nl);  // 3D length of segment j -> j+1 (normalised)
     for (size_t j = 0; j < nl; ++j) seg[j] = (pos(lu[(j + 1) % nl]) - pos(lu[j])).norm() * inv;
+    // Goal turning angle pi - theta, theta the face's 3D angle at the use. Unwinding: gentle turns
+    // (below 30 degrees) aim at a fraction of their 3D value, corners keep theirs, so long curved
+    // sides straighten.
+    std::vector<double> turn(nl);
+    double sum = 0, len = 0;
+    for (size_t j = 0; j < nl; ++j) {
+      turn[j] = kPi - c.use_angle[static_cast<size_t>(lu[j])];
+      if (unwind < 1.0 && std::abs(turn[j]) < kPi / 6) turn[j] *= unwind;
+      sum += turn[j];
+      len += 0.5 * (seg[(j + nl - 1) % nl] + seg[j]);
+    }
+    // A closed planar loop turns by exactly +2 pi (outer, counter-clockwise) or -2 pi (inner). The 3D
+    // goals sum to that only on developable faces (the rest is the enclosed Gaussian curvature): on
+    // an uncut cylinder both loops are geodesics whose goals sum to 0, and the term folded the inner
+    // loop into a straight segment. The difference is spread over the loop by segment length.
+    const double target = (static_cast<Index>(d) == tp.outer_loop ? 2.0 : -2.0) * kPi;
+    const double per_length = len > 0 ? (target - sum) / len : 0.0;
     for (size_t j = 0; j < nl; ++j) {
       const Index up = lu[(j + nl - 1) % nl], u = lu[j], un = lu[(j + 1) % nl];
       const double Lm = seg[(j + nl - 1) % nl], Lp = seg[j], lbar = 0.5 * (Lm + Lp);
       if (!(lbar > 0)) continue;
-      // Goal turning angle pi - theta with theta the face's 3D angle at this use: p = 0 exactly when
-      // the UV corner has that angle and its two segments the 3D length ratio.
-      double turn = kPi - c.use_angle[static_cast<size_t>(u)];
-      // Unwinding: gentle turns (below 30 degrees) aim at a fraction of their 3D value, corners
-      // keep theirs, so the loop still closes while long curved sides straighten.
-      if (unwind < 1.0 && std::abs(turn) < kPi / 6) turn *= unwind;
-      const double phi = 0.5 * turn;
+      // p = 0 exactly when the UV corner turns by the goal and its two segments have the 3D ratio.
+      const double phi = 0.5 * (turn[j] + per_length * lbar);
       const double scale = std::sqrt(mu / lbar);
       const Complex cm = scale * (Lp / lbar) * std::polar(1.0, phi), cp = scale * (Lm / lbar) * std::polar(1.0, -phi);
       trip.emplace_back(row, up, cm);
