@@ -207,15 +207,12 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
   auto refactor = [&] {
     SpMatR Hd = H;
     for (Index i = 0; i < nr; ++i) Hd.coeffRef(i, i) += shift[i];
-    const double t0 = now();
     chol_.factorize(Hd);
-    t_factor_ = now() - t0;
     factored_ = true;
   };
-  // Refactorise when the last step's iterations cost more than a factorisation would have.
-  const FactorCounters& fc = chol_.counters();
-  const double t_solve = fc.solves > 0 ? fc.time_solve / static_cast<double>(fc.solves) : 0.0;
-  if (!factored_ || chol_.size() != nr || last_pcg_ * t_solve > t_factor_) refactor();
+  // Refactorise when the last step needed many iterations (a factorisation costs about ten
+  // solves at 1M triangles). A count, not a timing: results must not depend on machine load.
+  if (!factored_ || chol_.size() != nr || last_pcg_ > kMaxStaleIterations) refactor();
   for (int round = 0; round < 2; ++round) {
     Eigen::MatrixXd W;
     Eigen::FullPivLU<Eigen::MatrixXd> S;

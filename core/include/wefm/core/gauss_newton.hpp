@@ -108,8 +108,8 @@ class GaussNewton {
   SparseCholeskyReal chol_;
   double lambda_ = 1e-6;
   bool factored_ = false;
-  int last_pcg_ = 0;       // iterations of the last step's conjugate gradients
-  double t_factor_ = 0;    // time of the last factorisation
+  int last_pcg_ = 0;  // iterations of the last step's conjugate gradients
+  static constexpr int kMaxStaleIterations = 10;
   std::int64_t pcg_iterations_ = 0;
   double t_assembly_ = 0;
 };
