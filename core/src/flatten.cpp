@@ -169,6 +169,16 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       recentre(z);
     }
   }
+  // Scales about the gauge centre so the total UV area equals the 3D area (size-free layouts).
+  auto scale_to_3d_area = [&](VectorXc& zz) {
+    double uv_area = 0, a3 = 0;
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const Complex u0 = zz[tp.corner_use[3 * t]], u1 = zz[tp.corner_use[3 * t + 1]], u2 = zz[tp.corner_use[3 * t + 2]];
+      uv_area += 0.5 * ((u1 - u0).real() * (u2 - u0).imag() - (u1 - u0).imag() * (u2 - u0).real());
+      a3 += coef.tri_area[t];
+    }
+    if (uv_area > 0) zz = ((zz.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
+  };
   auto score_of = [&](const VectorXc& zz) {
     const double tq = now();
     const double s = evaluate_quality(mesh, tp, zz).score;
@@ -254,13 +264,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   FactorCounters gn_counters;
   if (opt.s > 0 && !early) {
     // For s > 0 the energy fixes the size: start from the layout with the 3D area.
-    double uv_area = 0, a3 = 0;
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
-      uv_area += 0.5 * ((u1 - u0).real() * (u2 - u0).imag() - (u1 - u0).imag() * (u2 - u0).real());
-      a3 += coef.tri_area[t];
-    }
-    if (uv_area > 0 && gauge.vector) z = ((z.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
+    if (gauge.vector) scale_to_3d_area(z);
     const SeamSubstitution sub = substitute_seams(tp, mode, rotation);
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
@@ -307,13 +311,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
 
   // s = 0 is scale-free: return the layout with the 3D area.
   if ((rep.s == 0 || early) && gauge.vector) {
-    double uv_area = 0, a3 = 0;
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
-      uv_area += 0.5 * ((u1 - u0).real() * (u2 - u0).imag() - (u1 - u0).imag() * (u2 - u0).real());
-      a3 += coef.tri_area[t];
-    }
-    if (uv_area > 0) z = ((z.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
+    scale_to_3d_area(z);
   }
   stage.check(0.95, "quality");
   res.uv = z * ls;

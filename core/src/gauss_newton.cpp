@@ -53,7 +53,14 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
   H_.resize(2 * n, 2 * n);
   H_.setFromTriplets(trip.begin(), trip.end());
   H_.makeCompressed();
-  identity_ = sub.reduced == n && sub.leftover.empty();
+  if (B_) B_rows_ = *B_;
+  if (form == Residual::PerUse) {
+    // Rows per use: the half-edges opposite each use.
+    opposite_.assign(static_cast<size_t>(n), {});
+    for (size_t h = 0; h < c.alpha.size(); ++h)
+      opposite_[static_cast<size_t>(tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))])].push_back(h);
+  }
+  identity_ = sub.reduced == n;
   if (identity_)
     for (Index u = 0; u < n; ++u) identity_ = identity_ && sub.use_to_reduced[static_cast<size_t>(u)] == u;
   if (!identity_) {
@@ -108,11 +115,8 @@ void GaussNewton::for_each_row_split(const VectorXc& z, double s, F&& f) const {
       f(p, q, es, ne);
     }
   } else {
-    // Rows per use: the half-edges opposite each use, grouped once.
-    std::vector<std::vector<size_t>> opp(static_cast<size_t>(tp_.use_count));
-    for (size_t h = 0; h < nh; ++h) opp[static_cast<size_t>(tp_.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))])].push_back(h);
     std::vector<Entry> big;
-    for (const auto& hs : opp) {
+    for (const auto& hs : opposite_) {
       if (hs.empty()) continue;
       Complex p{0, 0}, q{0, 0};
       int ne = 0;
@@ -157,7 +161,7 @@ void GaussNewton::linearise(const VectorXc& z, double s, Eigen::VectorXd& g, dou
   for_each_row(z, s, accumulate);
   if (B_) {
     // The boundary term is complex-linear: rows of B as they are.
-    const Eigen::SparseMatrix<Complex, Eigen::RowMajor, int> Br = *B_;
+    const auto& Br = B_rows_;
     Entry es[8];
     for (Index row = 0; row < Br.rows(); ++row) {
       Complex r{0, 0};

@@ -26,10 +26,7 @@ SeamSubstitution substitute_seams(const Topology& tp, const std::vector<EdgeMode
     ex[static_cast<size_t>(u)].root = u;
     members[static_cast<size_t>(u)] = {u};
   }
-  struct Closing {
-    Expr lhs;  // sum that must vanish: c z_root + q terms
-  };
-  std::vector<Closing> closing;
+  std::vector<Expr> closing;  // constraints closing a cycle: c z_root + q terms must vanish
   Index nq = 0;
   for (const RepeatedEdge& r : tp.repeated) {
     const EdgeMode md = mode[static_cast<size_t>(r.edge)];
@@ -48,7 +45,7 @@ SeamSubstitution substitute_seams(const Topology& tp, const std::vector<EdgeMode
       if (ea.root == eb.root) {
         diff.root = ea.root;
         diff.c = ea.c - c * eb.c;
-        closing.push_back({diff});
+        closing.push_back(diff);
         continue;
       }
       // Eliminate the root of the smaller class: ca z_ra - c cb z_rb + Q = 0.
@@ -97,10 +94,10 @@ SeamSubstitution substitute_seams(const Topology& tp, const std::vector<EdgeMode
   out.P.makeCompressed();
   out.P_rows = out.P;
   out.kept = kept;
-  for (const Closing& cl : closing) {
+  for (const Expr& cl : closing) {
     LinearRow row;
-    if (!negligible(cl.lhs.c)) row.terms.emplace_back(col_of_root(cl.lhs.root), cl.lhs.c);
-    for (auto& [k, v] : cl.lhs.q)
+    if (!negligible(cl.c)) row.terms.emplace_back(col_of_root(cl.root), cl.c);
+    for (auto& [k, v] : cl.q)
       if (!negligible(v)) row.terms.emplace_back(kept + k, v);
     if (!row.terms.empty()) out.leftover.push_back(std::move(row));  // empty: the cycle is consistent
   }

@@ -99,6 +99,8 @@ class GaussNewton {
   Residual form_;
   std::vector<double> w_;
   const SeamSubstitution& sub_;
+  Eigen::SparseMatrix<Complex, Eigen::RowMajor, int> B_rows_;  // B by rows, for the linearisation
+  std::vector<std::vector<size_t>> opposite_;                   // PerUse: half-edges opposite each use
   SpMatR P_real_;
   bool identity_ = true;
   SpMatR H_;  // real 2n x 2n over uses, fixed pattern
