@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "domain_picture.hpp"
+#include "svg_text.hpp"
 #include "exit_codes.hpp"
 #include "text_out.hpp"
 
@@ -16,23 +17,6 @@ constexpr double kCell = 240;     // cell side in px
 constexpr double kPad = 14;       // inner margin of a cell
 constexpr double kLabel = 30;     // label band under the domain
 
-void hex(TextOut& out, const Rgb& c) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c[0], c[1], c[2]);
-  out.put(buf);
-}
-
-void escaped(TextOut& out, const std::string& s) {
-  for (char c : s) {
-    switch (c) {
-      case '&': out.put("&amp;"); break;
-      case '<': out.put("&lt;"); break;
-      case '>': out.put("&gt;"); break;
-      case '"': out.put("&quot;"); break;
-      default: out.put(c);
-    }
-  }
-}
 
 void text(TextOut& out, double x, double y, int size, const std::string& s) {
   out.put("<text x=\"");
@@ -42,7 +26,7 @@ void text(TextOut& out, double x, double y, int size, const std::string& s) {
   out.put("\" font-size=\"");
   out.integer(size);
   out.put("\">");
-  escaped(out, s.size() > 60 ? s.substr(0, 57) + "..." : s);
+  put_escaped(out, s.size() > 60 ? s.substr(0, 57) + "..." : s);
   out.put("</text>\n");
 }
 
@@ -67,10 +51,10 @@ void domain(TextOut& out, const FaceSnapshot& snap, double x0, double y0) {
       pt(snap.tri_uses[3 * t + c]);
     }
     out.put("\" fill=\"");
-    hex(out, a.flipped[t] ? kFlipFill : distortion_colour(a.log_ratio[t], a.limit));
+    put_hex(out, a.flipped[t] ? kFlipFill : distortion_colour(a.log_ratio[t], a.limit));
     if (a.flipped[t]) {
       out.put("\" stroke=\"");
-      hex(out, kFlipOutline);
+      put_hex(out, kFlipOutline);
       out.put("\" stroke-width=\"0.8");
     }
     out.put("\"/>\n");
@@ -78,7 +62,7 @@ void domain(TextOut& out, const FaceSnapshot& snap, double x0, double y0) {
   auto segments = [&](const std::vector<std::array<int32_t, 2>>& segs, const Rgb& colour, double width) {
     if (segs.empty()) return;
     out.put("<path fill=\"none\" stroke=\"");
-    hex(out, colour);
+    put_hex(out, colour);
     out.put("\" stroke-width=\"");
     out.fixed(width, 1);
     out.put("\" d=\"");

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "domain_picture.hpp"
+#include "svg_text.hpp"
 #include "exit_codes.hpp"
 #include "text_out.hpp"
 
@@ -23,23 +24,6 @@ struct View {
   double y(double v) const { return kMargin + (v1 - v) * k; }  // SVG y grows downwards
 };
 
-void hex(TextOut& out, const Rgb& c) {
-  char buf[8];
-  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c[0], c[1], c[2]);
-  out.put(buf);
-}
-
-void escaped(TextOut& out, const std::string& s) {
-  for (char c : s) {
-    switch (c) {
-      case '&': out.put("&amp;"); break;
-      case '<': out.put("&lt;"); break;
-      case '>': out.put("&gt;"); break;
-      case '"': out.put("&quot;"); break;
-      default: out.put(c);
-    }
-  }
-}
 
 void point(TextOut& out, const View& view, const double* p) {
   out.fixed(view.x(p[0]), 2);
@@ -66,10 +50,10 @@ void polygons(TextOut& out, const FaceSnapshot& snap, const DomainAnalysis& a, c
       point(out, view, &snap.uv[2 * static_cast<size_t>(snap.tri_uses[3 * t + c])]);
     }
     out.put("\" fill=\"");
-    hex(out, fill);
+    put_hex(out, fill);
     out.put("\" stroke=\"");
     // Stroking with the fill colour hides the hairline gaps anti-aliasing leaves between triangles.
-    hex(out, flip ? kFlipOutline : fill);
+    put_hex(out, flip ? kFlipOutline : fill);
     out.put(flip ? "\" stroke-width=\"1.5\"/>\n" : "\"/>\n");
   }
 }
@@ -96,9 +80,9 @@ void binned_paths(TextOut& out, const FaceSnapshot& snap, const DomainAnalysis& 
                : b == degenerate_bin ? kDegenerate
                                      : distortion_colour(a.limit * (b - kBins) / kBins, a.limit);
     out.put("<path fill=\"");
-    hex(out, fill);
+    put_hex(out, fill);
     out.put("\" stroke=\"");
-    hex(out, b == flip_bin ? kFlipOutline : fill);
+    put_hex(out, b == flip_bin ? kFlipOutline : fill);
     out.put("\" d=\"");
     for (size_t t = 0; t < nt; ++t) {
       if (bin[t] != b) continue;
@@ -136,7 +120,7 @@ void legend(TextOut& out, const DomainAnalysis& a, double x0, double height) {
     out.put("<stop offset=\"");
     out.fixed(i / 8.0, 3);
     out.put("\" stop-color=\"");
-    hex(out, distortion_colour(t * a.limit, a.limit));
+    put_hex(out, distortion_colour(t * a.limit, a.limit));
     out.put("\"/>\n");
   }
   out.put("</linearGradient></defs>\n");
@@ -193,7 +177,7 @@ int write_domain_svg(const std::string& path, const FaceSnapshot& snap, const Do
                 width, height, width, height);
   out.put(buf);
   out.put("<title>wefm UV domain</title>\n<desc>");
-  escaped(out, "triangles: " + std::to_string(a.log_ratio.size()) + ", flipped: " + std::to_string(a.flips) +
+  put_escaped(out, "triangles: " + std::to_string(a.log_ratio.size()) + ", flipped: " + std::to_string(a.flips) +
                    ", colour scale +-" + std::to_string(a.limit) + " in log(UV area/3D area)");
   out.put("</desc>\n<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n");
   out.put("<g id=\"triangles\" stroke-width=\"0.3\" stroke-linejoin=\"round\">\n");
