@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "owned.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "flatten_settings.hpp"
@@ -19,19 +20,6 @@
 namespace wefm_cli {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-struct FaceDeleter {
-  void operator()(wefm_face* f) const { wefm_face_release(f); }
-};
-struct MeshDeleter {
-  void operator()(wefm_mesh* m) const { wefm_mesh_release(m); }
-};
-struct DomainMeshDeleter {
-  void operator()(wefm_domain_mesh* m) const { wefm_domain_mesh_release(m); }
-};
 
 std::vector<OptionSpec> mesh_specs() {
   std::vector<OptionSpec> specs = {

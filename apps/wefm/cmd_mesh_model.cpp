@@ -18,6 +18,7 @@
 #include <set>
 #include <thread>
 
+#include "owned.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
 
@@ -38,9 +39,6 @@ namespace {
 #ifdef WEFM_CLI_HAVE_OCCT
 
 using Json = nlohmann::ordered_json;
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
 std::vector<OptionSpec> mesh_model_specs() {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const wefm_cad::TessellationSettings d;
@@ -89,13 +87,6 @@ struct FaceMeshRun {
   double time_solve = 0, time_mesh = 0;
   double score = NAN;
   int64_t flips = 0;
-};
-
-struct FaceDeleter {
-  void operator()(wefm_face* f) const { wefm_face_release(f); }
-};
-struct DomainMeshDeleter {
-  void operator()(wefm_domain_mesh* m) const { wefm_domain_mesh_release(m); }
 };
 
 template <class T, class G>

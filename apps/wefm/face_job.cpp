@@ -9,22 +9,12 @@
 #include "obj_output.hpp"
 #include "report_output.hpp"
 #include "seams_file.hpp"
+#include "owned.hpp"
 #include "topology_file.hpp"
 
 namespace wefm_cli {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-struct FaceDeleter {
-  void operator()(wefm_face* f) const { wefm_face_release(f); }
-};
-struct MeshDeleter {
-  void operator()(wefm_mesh* m) const { wefm_mesh_release(m); }
-};
 
 // The library names edges by index; with a topology file the user knows them by id, so
 // "edge 8" becomes "edge 8 (id 118)".
