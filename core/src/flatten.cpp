@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
+#include <utility>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -179,11 +180,12 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     }
     if (uv_area > 0) zz = ((zz.array() - gauge.center) * std::sqrt(a3 / uv_area) + gauge.center).matrix();
   };
+  Quality last_quality;
   auto score_of = [&](const VectorXc& zz) {
     const double tq = now();
-    const double s = evaluate_quality(mesh, tp, zz).score;
+    last_quality = evaluate_quality(mesh, tp, zz);
     rep.time.quality += now() - tq;
-    return s;
+    return last_quality.score;
   };
 
   // --- Repeated edges: choose each automatic edge's mode by score (METHOD §7 step 2) -----------
@@ -257,10 +259,19 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   // --- Continuation in s ------------------------------------------------------------------------
   const bool early = opt.s > 0 && opt.score_threshold <= 1.0 && score_of(z) >= opt.score_threshold;
   const double t_cont = now();
-  // Gauss-Newton can still end in a worse layout than a smaller s gave (folds on strongly curved
-  // faces): keep the best-scoring layout reached and report the s it belongs to.
+  // Gauss-Newton can end in a layout with flips or boundary overlaps where a smaller s gave a valid
+  // one (a sphere with a small hole at s = 2): keep the valid layout of the largest s reached, and
+  // report that s. Scores are not compared across s: the caller chose s, and on a sphere a valid
+  // s = 0.3 layout scores below s = 0 (measured .034 against .039) yet is what was asked for.
+  // Only when no step is valid does the best score win.
+  auto rank_of = [&](const VectorXc& zz, double s_of) {
+    const double sc = score_of(zz);
+    const bool valid = last_quality.flips == 0 && last_quality.boundary_intersections == 0;
+    return std::make_pair(valid ? 1 : 0, valid ? s_of : sc);
+  };
   VectorXc best_z = z;
-  double best_score = opt.s > 0 ? score_of(z) : 0.0, best_s = 0.0;
+  std::pair<int, double> best_rank = opt.s > 0 ? rank_of(z, 0.0) : std::make_pair(1, 0.0);
+  double best_s = 0.0;
   FactorCounters gn_counters;
   if (opt.s > 0 && !early) {
     // For s > 0 the energy fixes the size: start from the layout with the 3D area.
@@ -285,9 +296,9 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       step.rho_change = gr.rho_change;
       rep.rho_iterations += gr.iterations;
       if (!gr.converged) rep.converged = false;
-      const double sc = score_of(z);
-      if (sc >= best_score - 1e-12) {
-        best_score = sc;
+      const std::pair<int, double> rank = rank_of(z, s_next);
+      if (rank >= best_rank) {
+        best_rank = rank;
         best_z = z;
         best_s = s_next;
       }
