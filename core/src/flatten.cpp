@@ -280,8 +280,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
     keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
-    kkt.release();  // the s = 0 factor is not needed any more: do not hold two factors at once
     GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend);
+    // The s = 0 factor becomes the continuation's preconditioner, refactorised in place; with
+    // substituted seams the continuation factorises its own pattern: do not hold two factors.
+    kkt.release_caches();
+    if (!gn.share_factor(kkt.factor(), kkt.split_use(0), kkt.split_use(1))) kkt.release();
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
     gn.set_scale_center(gauge.center);
     double s_cur = 0;

@@ -14,12 +14,6 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-// d/dz of a residual term: l dz + m conj(dz).
-struct Entry {
-  Index use;
-  Complex l, m;
-};
-
 // Real 2x2 block (row-major) of dz -> l dz + m conj(dz) acting on (Re dz, Im dz).
 void real_block(const Entry& e, double* J) {
   J[0] = e.l.real() + e.m.real();
@@ -42,7 +36,7 @@ void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
 
 GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, const SpMatC& K,
                          const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend)
-    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), rows_(std::move(rows)), chol_(backend) {
+    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), rows_(std::move(rows)), own_chol_(backend) {
   const Index n = tp.use_count;
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<size_t>(K.nonZeros()) * 4);
@@ -53,6 +47,8 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
   H_.resize(2 * n, 2 * n);
   H_.setFromTriplets(trip.begin(), trip.end());
   H_.makeCompressed();
+  Kc_ = K;
+  Kc_.makeCompressed();
   if (B_) B_rows_ = *B_;
   if (form == Residual::PerUse) {
     // Rows per use: the half-edges opposite each use.
@@ -127,7 +123,16 @@ void GaussNewton::for_each_row_split(const VectorXc& z, double s, F&& f) const {
   }
 }
 
-void GaussNewton::add_block(Index a, Index b, const double* Ja, const double* Jb) {
+void GaussNewton::add_block(Index a, Index b, const double* Ja, const double* Jb, const Entry& ea, const Entry& eb) {
+  // Kc(a, b) += conj(l_a) l_b + m_a conj(m_b): |sum l dz|^2 + |sum m conj(dz)|^2, the real form
+  // without the cross terms between the complex-linear and anti-linear parts (small below s = 2).
+  {
+    const int* begin = Kc_.innerIndexPtr() + Kc_.outerIndexPtr()[b];
+    const int* end = Kc_.innerIndexPtr() + Kc_.outerIndexPtr()[b + 1];
+    const int* p = std::lower_bound(begin, end, static_cast<int>(a));
+    if (p == end || *p != a) fail(Errc::internal, "Gauss-Newton block outside the energy pattern");
+    Kc_.valuePtr()[p - Kc_.innerIndexPtr()] += std::conj(ea.l) * eb.l + ea.m * std::conj(eb.m);
+  }
   // H(a, b) += Ja^T Jb
   for (int cb = 0; cb < 2; ++cb) {
     const Index col = 2 * b + cb;
@@ -143,6 +148,7 @@ void GaussNewton::add_block(Index a, Index b, const double* Ja, const double* Jb
 void GaussNewton::linearise(const VectorXc& z, double s, Eigen::VectorXd& g, double& energy) {
   const Index n = tp_.use_count;
   std::fill(H_.valuePtr(), H_.valuePtr() + H_.nonZeros(), 0.0);
+  std::fill(Kc_.valuePtr(), Kc_.valuePtr() + Kc_.nonZeros(), Complex(0, 0));
   g.setZero(2 * n);
   energy = 0;
   std::vector<double> J;
@@ -156,7 +162,7 @@ void GaussNewton::linearise(const VectorXc& z, double s, Eigen::VectorXd& g, dou
       g[2 * es[a].use + 1] += Ja[1] * r.real() + Ja[3] * r.imag();
     }
     for (int a = 0; a < ne; ++a)
-      for (int b = 0; b < ne; ++b) add_block(es[a].use, es[b].use, &J[static_cast<size_t>(4 * a)], &J[static_cast<size_t>(4 * b)]);
+      for (int b = 0; b < ne; ++b) add_block(es[a].use, es[b].use, &J[static_cast<size_t>(4 * a)], &J[static_cast<size_t>(4 * b)], es[a], es[b]);
   };
   for_each_row(z, s, accumulate);
   if (B_) {
@@ -204,28 +210,54 @@ double GaussNewton::rescale(VectorXc& z, double s) const {
 bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
                              Eigen::VectorXd& delta) {
   // Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
-  // by a factorisation of an earlier Gauss-Newton matrix (the constraint preconditioner keeps every
-  // iterate in the null space of C). A fresh factorisation converges in one iteration; a stale one
-  // in a few, each costing one solve instead of a factorisation. Too many: refactorise.
+  // by a complex factorisation of the complex-linear part of an earlier Gauss-Newton matrix (the
+  // constraint preconditioner keeps every iterate in the null space of C). The real 2n matrix
+  // itself was factorised before: measured at 1M triangles, s = 1, its factor took the peak from
+  // 1.35 GB (s = 0) to 3.1 GB; the complex one is the s = 0 factor's storage, refactorised in
+  // place, and costs 4-8 CG iterations per step where the real one cost 1-3.
   const Index nr = static_cast<Index>(H.rows());
   auto refactor = [&] {
-    SpMatR Hd = H;
-    for (Index i = 0; i < nr; ++i) Hd.coeffRef(i, i) += shift[i];
-    chol_.factorize(Hd);
+    auto shift_of = [&](Index i) { return 0.5 * (shift[2 * i] + shift[2 * i + 1]); };
+    if (!p_of_.empty()) {
+      std::fill(Kpp_.valuePtr(), Kpp_.valuePtr() + Kpp_.nonZeros(), Complex(0, 0));
+      for (Index v = 0; v < Kc_.nonZeros(); ++v)
+        if (kc_to_pp_[static_cast<size_t>(v)] >= 0) Kpp_.valuePtr()[kc_to_pp_[static_cast<size_t>(v)]] = Kc_.valuePtr()[v];
+      for (Index u = 0; u < nr / 2; ++u) {
+        const Index pu = p_of_[static_cast<size_t>(u)];
+        if (pu >= 0) Kpp_.coeffRef(pu, pu) += shift_of(u);
+      }
+      chol_->factorize(Kpp_);
+      Eigen::MatrixXcd Kpx = Eigen::MatrixXcd::Zero(Kpp_.rows(), 2);
+      for (const SplitEntry& e : px_entries_) Kpx(e.p, e.x) = Kc_.valuePtr()[e.value];
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) Sx_(i, j) = Kc_.coeff(split_[i], split_[j]) + (i == j ? shift_of(split_[i]) : 0.0);
+      Wx_ = chol_->solve(Kpx);
+      Sx_ -= Kpx.adjoint() * Wx_;
+    } else {
+      SpMatC Kd = identity_ ? Kc_ : SpMatC(sub_.P.adjoint() * Kc_ * sub_.P);
+      for (Index i = 0; i < nr / 2; ++i) Kd.coeffRef(i, i) += shift_of(i);
+      chol_->factorize(Kd);
+    }
     factored_ = true;
   };
   // Refactorise when the last step needed many iterations (a factorisation costs about ten
   // solves at 1M triangles). A count, not a timing: results must not depend on machine load.
-  if (!factored_ || chol_.size() != nr || last_pcg_ > kMaxStaleIterations) refactor();
-  for (int round = 0; round < 2; ++round) {
-    Eigen::MatrixXd W;
-    Eigen::FullPivLU<Eigen::MatrixXd> S;
-    if (C.rows() > 0) {
-      W = chol_.solve(C.transpose());
-      S.compute(C * W);
-    }
+  bool fresh = false;
+  if (!factored_ || last_pcg_ > kMaxStaleIterations) {
+    refactor();
+    fresh = true;
+  }
+  Eigen::MatrixXd W;
+  Eigen::FullPivLU<Eigen::MatrixXd> S;
+  auto project = [&] {
+    if (C.rows() == 0) return;
+    W = precondition(C.transpose());
+    S.compute(C * W);
+  };
+  project();
+  for (;;) {
     auto precondition = [&](const Eigen::VectorXd& r) {
-      Eigen::VectorXd y = chol_.solve(r);
+      Eigen::VectorXd y = this->precondition(r);
       if (C.rows() > 0) y -= W * S.solve(C * y);
       return y;
     };
@@ -235,8 +267,9 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
     Eigen::VectorXd r = -g, zr = precondition(r), p = zr;
     double rz = r.dot(zr);
     const double rz0 = rz;
-    bool ok = rz0 <= 0;
-    for (int it = 0; it < 25 && !ok; ++it) {
+    const double target = kCgTolerance * rz0;
+    bool converged = rz0 <= 0;
+    for (int it = 0; it < kMaxCgIterations && !converged; ++it) {
       const Eigen::VectorXd q = apply(p);
       const double pq = p.dot(q);
       if (!(pq > 0)) break;
@@ -247,17 +280,92 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
       const double rz_new = r.dot(zr);
       ++pcg_iterations_;
       last_pcg_ = it + 1;
-      if (!(rz_new > 1e-8 * rz0)) {  // inexact Newton: 1e-4 in the preconditioned residual norm
-        ok = true;
-        break;
-      }
+      converged = !(rz_new > target);
       p = zr + (rz_new / rz) * p;
       rz = rz_new;
     }
-    if (ok && delta.allFinite()) return true;
-    if (round == 0) refactor();
+    if (!delta.allFinite()) delta.setZero(nr);
+    if (converged) return true;
+    // Every CG iterate lowers the quadratic model, so an unfinished one is still a descent
+    // direction (the line search sizes it); a stale factor gets one refactorisation first.
+    if (fresh) return delta.squaredNorm() > 0;
+    refactor();
+    fresh = true;
+    project();
   }
-  return false;
+}
+
+bool GaussNewton::share_factor(SparseCholesky& chol, Index x0, Index x1) {
+  if (!identity_) return false;
+  const Index n = tp_.use_count;
+  chol_ = &chol;
+  split_[0] = x0;
+  split_[1] = x1;
+  p_of_.assign(static_cast<size_t>(n), -1);
+  Index k = 0;
+  for (Index u = 0; u < n; ++u)
+    if (u != x0 && u != x1) p_of_[static_cast<size_t>(u)] = k++;
+  // The pattern PartitionedKKT::set_matrix gave K_PP, built the same way (triplets of K's pattern).
+  std::vector<Eigen::Triplet<Complex>> pp;
+  pp.reserve(static_cast<size_t>(Kc_.nonZeros()));
+  for (Index c = 0; c < Kc_.outerSize(); ++c)
+    for (SpMatC::InnerIterator it(Kc_, c); it; ++it) {
+      const Index pr = p_of_[static_cast<size_t>(it.row())], pc = p_of_[static_cast<size_t>(c)];
+      if (pr >= 0 && pc >= 0) pp.emplace_back(pr, pc, Complex(1, 0));
+    }
+  Kpp_.resize(n - 2, n - 2);
+  Kpp_.setFromTriplets(pp.begin(), pp.end());
+  Kpp_.makeCompressed();
+  kc_to_pp_.assign(static_cast<size_t>(Kc_.nonZeros()), -1);
+  for (Index c = 0; c < Kc_.outerSize(); ++c)
+    for (Index v = Kc_.outerIndexPtr()[c]; v < Kc_.outerIndexPtr()[c + 1]; ++v) {
+      const Index pr = p_of_[static_cast<size_t>(Kc_.innerIndexPtr()[v])], pc = p_of_[static_cast<size_t>(c)];
+      if (pc < 0 && pr >= 0) px_entries_.push_back({v, pr, static_cast<Index>(c == x0 ? 0 : 1)});
+      if (pr < 0 || pc < 0) continue;
+      const int* begin = Kpp_.innerIndexPtr() + Kpp_.outerIndexPtr()[pc];
+      const int* end = Kpp_.innerIndexPtr() + Kpp_.outerIndexPtr()[pc + 1];
+      kc_to_pp_[static_cast<size_t>(v)] = std::lower_bound(begin, end, static_cast<int>(pr)) - Kpp_.innerIndexPtr();
+    }
+  return true;
+}
+
+Eigen::MatrixXd GaussNewton::precondition(const Eigen::MatrixXd& r) {
+  const Index n = r.rows() / 2;
+  auto at = [&](Index k, Index j) { return Complex(r(2 * k, j), r(2 * k + 1, j)); };
+  Eigen::MatrixXcd x;
+  if (!p_of_.empty()) {
+    Eigen::MatrixXcd b(n - 2, r.cols());
+    for (Index j = 0; j < r.cols(); ++j)
+      for (Index k = 0; k < n; ++k)
+        if (p_of_[static_cast<size_t>(k)] >= 0) b(p_of_[static_cast<size_t>(k)], j) = at(k, j);
+    // [K_PP K_PX; K_XP K_XX] x = b by block elimination: y = K_PP^{-1} b_P,
+    // x_X = S^{-1} (b_X - K_PX^H y), x_P = y - W x_X.
+    Eigen::MatrixXcd xp = chol_->solve(b);
+    Eigen::MatrixXcd bx(2, r.cols());
+    for (Index j = 0; j < r.cols(); ++j)
+      for (int s = 0; s < 2; ++s) bx(s, j) = at(split_[s], j);
+    // K_PX^H y = W^H K_PP y = W^H b_P (K_PP Hermitian): no product with K_PX needed.
+    const Eigen::MatrixXcd xx = Sx_.fullPivLu().solve(bx - Wx_.adjoint() * b);
+    xp -= Wx_ * xx;
+    x.resize(n, r.cols());
+    for (Index j = 0; j < r.cols(); ++j) {
+      for (Index k = 0; k < n; ++k)
+        if (p_of_[static_cast<size_t>(k)] >= 0) x(k, j) = xp(p_of_[static_cast<size_t>(k)], j);
+      for (int s = 0; s < 2; ++s) x(split_[s], j) = xx(s, j);
+    }
+  } else {
+    Eigen::MatrixXcd b(n, r.cols());
+    for (Index j = 0; j < r.cols(); ++j)
+      for (Index k = 0; k < n; ++k) b(k, j) = at(k, j);
+    x = chol_->solve(b);
+  }
+  Eigen::MatrixXd out(r.rows(), r.cols());
+  for (Index j = 0; j < r.cols(); ++j)
+    for (Index k = 0; k < n; ++k) {
+      out(2 * k, j) = x(k, j).real();
+      out(2 * k + 1, j) = x(k, j).imag();
+    }
+  return out;
 }
 
 double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
@@ -265,15 +373,16 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
   Eigen::VectorXd g;
   double e0 = 0;
   linearise(z, s, g, e0);
-  SpMatR H;
+  // Without seams H_ is used as it is (a copy cost 170 MB at 1M triangles).
+  SpMatR H_reduced;
   Eigen::VectorXd gy;
   if (identity_) {
-    H = H_;
     gy = g;
   } else {
-    H = SpMatR(P_real_.transpose() * H_ * P_real_);
+    H_reduced = SpMatR(P_real_.transpose() * H_ * P_real_);
     gy = P_real_.transpose() * g;
   }
+  const SpMatR& H = identity_ ? H_ : H_reduced;
   t_assembly_ += now() - t0;
   const Index nr = static_cast<Index>(H.rows());
   // Real constraint rows: Re and Im of each complex row over the reduced unknowns.

@@ -39,9 +39,18 @@ class PartitionedKKT {
   // Frees the factorisation and the caches (before the continuation builds its own).
   void release() {
     chol_.release();
+    release_caches();
+  }
+  // Frees everything but the factor, which the continuation refactorises in place (same pattern,
+  // no second symbolic analysis, no second factor in memory).
+  void release_caches() {
     unit_.clear();
     cache_valid_ = false;
+    K_ = SpMatC();
+    K_PX_ = Eigen::SparseMatrix<Complex>();
   }
+  SparseCholesky& factor() { return chol_; }
+  Index split_use(int j) const { return x_[j]; }
 
  private:
   struct Column {

@@ -23,8 +23,8 @@ bool have_cholmod();
 // with the other core loaded, 2 threads took 2.2x the time of 1.
 void set_blas_threads(int threads);
 
-// Scalar is Complex (the Hermitian energy of the linear solves) or double (the real Gauss-Newton
-// systems of the continuation, whose steps are not complex-linear).
+// Scalar is Complex: the Hermitian energy of the linear solves, and the complex-linear part of the
+// Gauss-Newton matrices that preconditions the continuation.
 template <class Scalar>
 class SparseCholeskyT {
  public:
@@ -53,6 +53,5 @@ class SparseCholeskyT {
 };
 
 using SparseCholesky = SparseCholeskyT<Complex>;
-using SparseCholeskyReal = SparseCholeskyT<double>;
 
 }  // namespace wefm
