@@ -1,5 +1,8 @@
 #include "wefm/core/annulus_choice.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 
 #include "wefm/core/error.hpp"
@@ -28,16 +31,39 @@ void keep_uncut_if_better(const TriMesh& mesh, const TopologySpec& uncut_spec, c
       if (g != Complex(0, 0)) r.terms.emplace_back(u, g);
     if (r.terms.empty()) return;  // a row across the seam only: it has no uncut meaning
   }
-  FlattenResult alt;
-  try {
-    alt = flatten(in);
-  } catch (const Error& e) {
-    if (e.code() == Errc::cancelled) throw;
-    return;
-  }
+  // Probe the uncut face conformally first (one factorisation) against the cut's conformal score;
+  // only an uncut layout that wins there gets the full solve: the uncut continuation is costly when
+  // it fails to converge (the real cylinder sample: 50 Gauss-Newton iterations, 20x the cut solve).
   SolveReport& rep = cut_res.report;
-  // Ties keep the cut: its periodic domain is what a mesher wants (matching nodes across the seam).
-  if (!(alt.report.quality.score > rep.quality.score + 1e-9)) {
+  double cut_conformal = -std::numeric_limits<double>::infinity();
+  for (const RepeatedEdge& r : cut.repeated)
+    for (double sc : cut_res.edge_scores[static_cast<size_t>(r.edge)])
+      if (std::isfinite(sc)) cut_conformal = std::max(cut_conformal, sc);
+  if (!std::isfinite(cut_conformal)) cut_conformal = rep.quality.score;  // modes forced: no conformal score kept
+  auto attempt = [&](const FlattenInput& fi, FlattenResult& out) {
+    try {
+      out = flatten(fi);
+      return true;
+    } catch (const Error& e) {
+      if (e.code() == Errc::cancelled) throw;
+      return false;
+    }
+  };
+  FlattenResult alt;
+  if (in.options.s > 0) {
+    FlattenInput probe = in;
+    probe.options.s = 0;
+    if (!attempt(probe, alt)) return;
+    rep.time.total += alt.report.time.total;
+    if (!(alt.report.quality.score > cut_conformal + 1e-9)) {
+      rep.auto_cut_other_score = alt.report.quality.score;
+      return;
+    }
+  }
+  if (!attempt(in, alt)) return;
+  // Ties keep the cut: its periodic domain is what a mesher wants (matching nodes across the seam);
+  // an unconverged uncut layout does not replace a converged cut one.
+  if (!(alt.report.quality.score > rep.quality.score + 1e-9) || (rep.converged && !alt.report.converged)) {
     rep.auto_cut_other_score = alt.report.quality.score;
     rep.time.total += alt.report.time.total;
     return;
