@@ -57,7 +57,7 @@ std::vector<OptionSpec> solver_option_specs() {
       {"edge-mode-of", 0, "EDGE=MODE",
        "force one edge's mode; EDGE is the topology file's id with --topology, else the library edge index", "",
        true},
-      {"auto-cut", 0, "", "cut annuli and closed surfaces automatically", d.auto_cut ? "on" : "off", false},
+      {"auto-cut", 0, "", "cut annuli and closed genus-0 faces automatically (no --seams/--topology)", d.auto_cut ? "on" : "off", false},
       {"threads", 0, "N", "worker threads for assembly/quality (0 = 1)", std::to_string(d.threads), false},
       {"score-threshold", 0, "T", "stop after the conformal solve if its score >= T (2 = never)",
        num(d.score_threshold), false},

@@ -62,6 +62,12 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
   j["converged"] = r.converged != 0;
   j["method"] = method_name(r.method);
   j["auto_cut"] = r.auto_cut != 0;
+  if (r.auto_cut) {
+    j["auto_cut_edges"] = r.auto_cut_edges;
+    j["auto_cut_length"] = number(r.auto_cut_length);
+    j["auto_cut_uncut_kept"] = r.auto_cut_uncut_kept != 0;
+    j["auto_cut_other_score"] = number(r.auto_cut_other_score);
+  }
   j["regularised_triangles"] = r.degenerate_triangles;
   j["min_beta_raised"] = r.min_beta_raised != 0;
   j["boundary_unwind"] = number(r.boundary_unwind);

@@ -86,6 +86,8 @@ module wefm
     real(c_double) :: peak_memory_mb
     integer(c_int32_t) :: min_beta_raised
     real(c_double) :: boundary_unwind
+    integer(c_int32_t) :: auto_cut_edges, auto_cut_uncut_kept
+    real(c_double) :: auto_cut_length, auto_cut_other_score
   end type wefm_report
 
   type, bind(C) :: wefm_mesh_options

@@ -146,6 +146,10 @@ WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* re
     r.degenerate_triangles = s.degenerate_triangles;
     r.min_beta_raised = s.min_beta_raised ? 1 : 0;
     r.boundary_unwind = s.unwind;
+    r.auto_cut_edges = s.auto_cut_edges;
+    r.auto_cut_uncut_kept = s.auto_cut_uncut_kept ? 1 : 0;
+    r.auto_cut_length = s.auto_cut_length;
+    r.auto_cut_other_score = s.auto_cut_other_score;
     r.time_topology = s.time.topology;
     r.time_coefficients = s.time.coefficients;
     r.time_assembly = s.time.assembly;

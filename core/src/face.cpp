@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "wefm/core/annulus_choice.hpp"
 #include "wefm/core/error.hpp"
 
 namespace wefm {
@@ -25,7 +26,12 @@ void Face::set_mesh(TriMesh mesh) {
 
 void Face::set_options(const Options& o) {
   validate_options(o);
+  // Switching auto_cut on a face it cuts (or would cut: an annulus) changes the topology, and
+  // with it the use ids: that clears constraints and the result like any topology change.
+  const bool cut_changes = topo_ && o.auto_cut != options_.auto_cut && spec_.loops.empty() && spec_.seams.empty() &&
+                           (!cut_.seams.empty() || topo_->loops.size() == 2);
   options_ = o;
+  if (cut_changes) topology_changed();
 }
 
 void Face::topology_changed() {
@@ -89,9 +95,24 @@ void Face::set_edge_mode(Index edge, EdgeMode mode) {
   result_.reset();
 }
 
+bool Face::auto_cut_applies() const { return options_.auto_cut && spec_.loops.empty() && spec_.seams.empty(); }
+
 const Topology& Face::topology() {
   require_mesh("the topology");
-  if (!topo_) topo_ = build_topology(mesh_, spec_);
+  if (!topo_) {
+    cut_ = AutoCut{};
+    if (auto_cut_applies()) cut_ = compute_auto_cut(mesh_);
+    if (cut_.seams.empty()) {
+      topo_ = build_topology(mesh_, spec_);
+    } else {
+      // The cut annulus or sphere has one loop: a boundary-cycle index given for the uncut face
+      // does not apply to it.
+      TopologySpec cut_spec = spec_;
+      cut_spec.seams = cut_.seams;
+      cut_spec.outer_loop = -1;
+      topo_ = build_topology(mesh_, cut_spec);
+    }
+  }
   return *topo_;
 }
 
@@ -154,6 +175,12 @@ void Face::solve(const ProgressFn& progress, const std::atomic<bool>* cancel) {
   in.progress = progress;
   in.cancel = cancel;
   FlattenResult r = flatten(in);
+  if (cut_.kind != AutoCutKind::None) {
+    r.report.auto_cut = true;
+    r.report.auto_cut_edges = static_cast<Index>(cut_.seams.size());
+    r.report.auto_cut_length = cut_.length;
+  }
+  if (cut_.kind == AutoCutKind::Annulus) keep_uncut_if_better(mesh_, spec_, tp, in, r);
   r.report.time.topology = t_topo;
   r.report.time.total += t_topo;
   result_ = std::move(r);

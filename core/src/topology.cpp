@@ -141,7 +141,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec) {
     cycles.push_back(std::move(cyc));
   }
   if (cycles.empty())
-    fail(Errc::invalid_topology, "closed surface with no boundary and no cut: give seams (wefm_face_add_seams: facet edges to cut along) or loops with a repeated edge (wefm_options.auto_cut is not implemented yet)");
+    fail(Errc::invalid_topology, "closed surface with no boundary and no cut: give seams (wefm_face_add_seams: facet edges to cut along) or loops with a repeated edge, or set wefm_options.auto_cut (genus 0 only)");
 
   auto cycle_uses = [&](const std::vector<Index>& cyc) {
     std::vector<Index> u(cyc.size());

@@ -360,6 +360,52 @@ def case_write_topology(tmp):
     check(diff < 1e-9, f"derived topology: UV differs after the round trip by {diff}")
 
 
+def case_auto_cut(tmp):
+    V, T, seam, bottom, top = meshes.cylinder()
+    src, out, rep, t1 = (os.path.join(tmp, n) for n in ("cyl.obj", "o.obj", "r.json", "t1.json"))
+    meshes.write_obj(src, V, T)
+    run("flatten", src, "-o", out, "--auto-cut", "--report", rep, "--write-topology", t1, expect=0)
+    r = json.load(open(rep))
+    check(r["auto_cut"] is True and r["auto_cut_edges"] == 3 and abs(r["auto_cut_length"] - 1.5) < 1e-12,
+          f"auto-cut report {r}")
+    check(r["auto_cut_uncut_kept"] is False and r["auto_cut_other_score"] < r["score"], f"uncut comparison {r}")
+    check(r["angle_distortion_max"] < 1 + 1e-7, f"cut cylinder not exact: {r['angle_distortion_max']}")
+    # The derived cut is written as a repeated edge along a generator (vertex i + n*j, one i), periodic.
+    w = json.load(open(t1))
+    rep_edges = [e for e in w["edges"] if e.get("repeated")]
+    check(len(rep_edges) == 1 and len(w["loops"]) == 1, f"written topology {w}")
+    chain = rep_edges[0]["vertices"]
+    check(len(chain) == 4 and len({v % 12 for v in chain}) == 1, f"cut chain {chain}")
+    check(rep_edges[0]["mode"] == "periodic", f"cut mode {rep_edges[0]}")
+    # Read back without --auto-cut: the same layout.
+    out2 = os.path.join(tmp, "o2.obj")
+    run("flatten", src, "-o", out2, "--topology", t1, expect=0)
+    _, VT1, F1 = read_obj(out)
+    _, VT2, F2 = read_obj(out2)
+    diff = max(abs(a - b) for t1_, t2_ in zip(F1, F2) for c1, c2 in zip(t1_, t2_) for a, b in zip(VT1[c1[1]], VT2[c2[1]]))
+    check(diff < 1e-9, f"UV differs after the topology round trip by {diff}")
+    # Closed surfaces: refused without --auto-cut (the message names it), slit with it; a torus is refused.
+    octa = os.path.join(tmp, "octa.obj")
+    meshes.write_obj(octa, [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)],
+                     [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)])
+    p = run("flatten", octa, "-o", out, expect=4)
+    check("auto_cut" in p.stderr, f"closed surface message:\n{p.stderr}")
+    run("flatten", octa, "-o", out, "--auto-cut", "--report", rep, expect=0)
+    r = json.load(open(rep))
+    check(r["auto_cut"] is True and r["flipped_triangles"] == 0 and r["boundary_intersections"] == 0, f"octahedron {r}")
+    n, m = 12, 6
+    tv = [((2 + 0.6 * math.cos(2 * math.pi * j / m)) * math.cos(2 * math.pi * i / n),
+           (2 + 0.6 * math.cos(2 * math.pi * j / m)) * math.sin(2 * math.pi * i / n), 0.6 * math.sin(2 * math.pi * j / m))
+          for j in range(m) for i in range(n)]
+    idx = lambda i, j: (i % n) + n * (j % m)
+    tt = [t for j in range(m) for i in range(n)
+          for t in ((idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)), (idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)))]
+    torus = os.path.join(tmp, "torus.obj")
+    meshes.write_obj(torus, tv, tt)
+    p = run("flatten", torus, "-o", out, "--auto-cut", expect=4)
+    check("genus 1" in p.stderr, f"torus message:\n{p.stderr}")
+
+
 def case_progress_quiet(tmp):
     V, T = meshes.patch()
     src = os.path.join(tmp, "p.obj")
@@ -454,7 +500,7 @@ def case_mesh(tmp):
 CASES = {f"format_{fmt}": (lambda tmp, fmt=fmt: case_format(fmt, tmp)) for fmt in meshes.WRITERS}
 CASES.update(info=case_info, batch=case_batch, usage=case_usage, unreadable=case_unreadable, topology=case_topology,
              topology_bad=case_topology_bad, write_topology=case_write_topology, progress_quiet=case_progress_quiet,
-             png=case_png, not_converged=case_not_converged, mesh=case_mesh)
+             png=case_png, not_converged=case_not_converged, mesh=case_mesh, auto_cut=case_auto_cut)
 
 
 def main():

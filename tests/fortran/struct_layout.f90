@@ -83,6 +83,10 @@ program struct_layout
   call at('wefm_report peak_memory_mb', c_loc(r), c_loc(r%peak_memory_mb))
   call at('wefm_report min_beta_raised', c_loc(r), c_loc(r%min_beta_raised))
   call at('wefm_report boundary_unwind', c_loc(r), c_loc(r%boundary_unwind))
+  call at('wefm_report auto_cut_edges', c_loc(r), c_loc(r%auto_cut_edges))
+  call at('wefm_report auto_cut_uncut_kept', c_loc(r), c_loc(r%auto_cut_uncut_kept))
+  call at('wefm_report auto_cut_length', c_loc(r), c_loc(r%auto_cut_length))
+  call at('wefm_report auto_cut_other_score', c_loc(r), c_loc(r%auto_cut_other_score))
 
   print '(a,i0)', 'wefm_mesh_options sizeof ', c_sizeof(m)
   call at('wefm_mesh_options struct_size', c_loc(m), c_loc(m%struct_size))

@@ -213,13 +213,25 @@ TEST_CASE("topology: a closed surface with no cut is INVALID_TOPOLOGY; seams fix
   CHECK(wefm_face_solve(f) == WEFM_ERROR_INVALID_TOPOLOGY);
   CHECK(contains(f.error(), "closed surface"));
   CHECK(contains(f.error(), "wefm_face_add_seams"));
-  // auto_cut is accepted but not implemented: still INVALID_TOPOLOGY, and the message says so.
+  CHECK(contains(f.error(), "auto_cut"));  // the message offers the automatic cut too
+  // auto_cut slits it through its six corners (120 degree cones): the octahedron's net, undistorted.
   o.auto_cut = 1;
   REQUIRE(wefm_face_set_options(f, &o) == WEFM_OK);
-  CHECK(wefm_face_solve(f) == WEFM_ERROR_INVALID_TOPOLOGY);
-  CHECK(contains(f.error(), "auto_cut is not implemented"));
+  CHECK(wefm_face_solve(f) == WEFM_OK);
+  wefm_report r;
+  wefm_report_init(&r, sizeof r);
+  REQUIRE(wefm_face_get_report(f, &r) == WEFM_OK);
+  CHECK(r.auto_cut == 1);
+  CHECK(r.auto_cut_edges == 5);
+  CHECK(r.flipped_triangles == 0);
+  CHECK(r.boundary_intersections == 0);
+  CHECK(r.angle_distortion_max < 1 + 1e-9);
+  // Switching it off again is a topology change: back to the closed surface, and its error.
   o.auto_cut = 0;
   REQUIRE(wefm_face_set_options(f, &o) == WEFM_OK);
+  int32_t solved = 1;
+  wefm_face_has_result(f, &solved);
+  CHECK(solved == 0);
   CHECK(wefm_face_build(f) == WEFM_ERROR_INVALID_TOPOLOGY);
   int32_t id = -1;
   CHECK(wefm_face_add_pin(f, 0, 0, 0, &id) == WEFM_ERROR_INVALID_TOPOLOGY);  // uses need a topology

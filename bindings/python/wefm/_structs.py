@@ -136,6 +136,10 @@ class Report(ctypes.Structure):
         ("peak_memory_mb", c_double),
         ("min_beta_raised", c_int32),
         ("boundary_unwind", c_double),
+        ("auto_cut_edges", c_int32),
+        ("auto_cut_uncut_kept", c_int32),
+        ("auto_cut_length", c_double),
+        ("auto_cut_other_score", c_double),
     ]
 
 

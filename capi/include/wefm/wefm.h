@@ -42,8 +42,9 @@
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or
- *              edge modes clears results. Options apply to the next solve: the result stays. A
- *              failed or cancelled solve keeps the previous result.
+ *              edge modes clears results. Options apply to the next solve: the result stays
+ *              (except auto_cut on a face it cuts: that changes the topology). A failed or
+ *              cancelled solve keeps the previous result.
  *
  * ABI.         Structs that may grow (wefm_options, wefm_report, wefm_mesh_options,
  *              wefm_mesh_report, wefm_mesh_info) start with `struct_size`. Their *_init function
@@ -204,7 +205,9 @@ typedef struct wefm_options {
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
   int max_rollout_sweeps;    /**< Default 10000 */
   double score_threshold;    /**< return after the conformal solve if its score >= this. Default 2 (never) */
-  int auto_cut;              /**< non-zero: cut annuli and closed surfaces automatically. Default 0 */
+  int auto_cut;              /**< non-zero: cut annuli and closed genus-0 surfaces without caller seams or
+                                  loops automatically (docs/SOLVER.md). Toggling it on a face it cuts is a
+                                  topology change. Default 0 */
   int threads;               /**< threads for the BLAS under CHOLMOD during a solve (0 = 1). Default 0 */
   double memory_limit_mb;    /**< refuse solves estimated above this (0 = no limit). Default 0 */
   double min_beta;           /**< altitude/base floor for degenerate triangles (> 0). Default 1e-3 */
@@ -555,6 +558,12 @@ typedef struct wefm_report {
                                       one, solved again with min_beta 0.05, scored better */
   double boundary_unwind;        /**< 1, or < 1 when the first layout overlapped itself and this one aims
                                       gentle boundary turns at that fraction of their 3D value */
+  int32_t auto_cut_edges;        /**< facet edges in the automatic cut (0 without one) */
+  int32_t auto_cut_uncut_kept;   /**< annulus only: non-zero if the layout without the cut scored better
+                                      and is returned; the cut's two sides then coincide (mode scar) */
+  double auto_cut_length;        /**< 3D length of the automatic cut (0 without one) */
+  double auto_cut_other_score;   /**< annulus only: score of the layout not returned (uncut, or cut if
+                                      auto_cut_uncut_kept); NaN if not computed */
 } wefm_report;
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */

@@ -42,6 +42,8 @@ int main(void) {
   FIELD(wefm_report, time_solve); FIELD(wefm_report, time_continuation);
   FIELD(wefm_report, time_quality); FIELD(wefm_report, time_total); FIELD(wefm_report, peak_memory_mb);
   FIELD(wefm_report, min_beta_raised); FIELD(wefm_report, boundary_unwind);
+  FIELD(wefm_report, auto_cut_edges); FIELD(wefm_report, auto_cut_uncut_kept);
+  FIELD(wefm_report, auto_cut_length); FIELD(wefm_report, auto_cut_other_score);
 
   SIZE(wefm_mesh_options);
   FIELD(wefm_mesh_options, struct_size); FIELD(wefm_mesh_options, type); FIELD(wefm_mesh_options, size);

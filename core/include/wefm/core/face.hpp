@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "wefm/core/auto_cut.hpp"
 #include "wefm/core/flatten.hpp"
 
 namespace wefm {
@@ -28,8 +29,10 @@ class Face {
   void set_edge_mode(Index edge, EdgeMode mode);
   const TopologySpec& spec() const { return spec_; }
 
-  // Builds and validates on first use after a change.
+  // Builds and validates on first use after a change; with options().auto_cut, an annulus or a
+  // closed genus-0 surface without caller seams or loops is cut first (auto_cut()).
   const Topology& topology();
+  const AutoCut& auto_cut() const { return cut_; }
 
   // Caller 3D nodes along an edge for meshing (wefm_face_set_edge_nodes), checked to lie on the
   // edge's facet chain; forgotten when the mesh or the topology changes.
@@ -50,11 +53,13 @@ class Face {
  private:
   void require_mesh(const char* what) const;
   void topology_changed();
+  bool auto_cut_applies() const;
 
   TriMesh mesh_;
   bool has_mesh_ = false;
   TopologySpec spec_;
   std::optional<Topology> topo_;
+  AutoCut cut_;  // the automatic cut inside topo_, if any
   Options options_;
   std::vector<LinearRow> rows_;
   std::optional<FlattenResult> result_;

@@ -3,6 +3,7 @@
 // decisions, continuation in s with a rho fixed point per step, quality.
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <vector>
@@ -33,7 +34,11 @@ struct SolveReport {
   double rho_change = 0;
   FactorCounters counters;
   std::int64_t iterative_iterations = 0;
-  bool auto_cut = false;
+  bool auto_cut = false;         // the face was cut automatically (Options::auto_cut)
+  Index auto_cut_edges = 0;       // facet edges in that cut
+  double auto_cut_length = 0;     // its 3D length
+  bool auto_cut_uncut_kept = false;  // annulus: the uncut layout scored better and is returned
+  double auto_cut_other_score = std::nan("");  // annulus: score of the layout not kept (uncut or cut)
   bool min_beta_raised = false;  // the first layout was invalid; this one used a stronger beta floor
   double unwind = 1.0;           // < 1: the first layout overlapped itself; this one straightened gentle boundary turns
   Index degenerate_triangles = 0;
