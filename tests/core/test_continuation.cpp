@@ -1,6 +1,10 @@
 // Continuation in s (METHOD §3, §7; issue "Full WEFM"): developable faces stay exact at every s,
 // and on curved faces s trades angle distortion for area distortion monotonically.
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
 #include <string>
 
 #include "solve_helpers.hpp"
@@ -107,4 +111,78 @@ TEST_CASE("a helicoid strip of two turns, whose low-distortion layout coils over
   CHECK(r.report.quality.flips == 0);
   CHECK(r.report.quality.boundary_intersections == 0);
   CHECK(r.report.unwind < 1.0);  // the first layout overlapped: the straightened one was kept
+}
+
+namespace {
+
+// RMS over the loops' uses of (UV corner angle - 3D corner angle): the turning-angle error of
+// the loops.
+double turning_angle_error(Face& f) {
+  const TriMesh& m = f.mesh();
+  const Topology& tp = f.topology();
+  const VectorXc& uv = f.result().uv;
+  std::vector<double> a3(static_cast<size_t>(tp.use_count), 0.0), a2(static_cast<size_t>(tp.use_count), 0.0);
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index p = m.triangles[t][k], q = m.triangles[t][(k + 1) % 3], r = m.triangles[t][(k + 2) % 3];
+      const Vec3 e1 = m.vertices[static_cast<size_t>(q)] - m.vertices[static_cast<size_t>(p)];
+      const Vec3 e2 = m.vertices[static_cast<size_t>(r)] - m.vertices[static_cast<size_t>(p)];
+      const Index up = tp.corner_use[3 * t + static_cast<size_t>(k)];
+      const Index uq = tp.corner_use[3 * t + static_cast<size_t>((k + 1) % 3)];
+      const Index ur = tp.corner_use[3 * t + static_cast<size_t>((k + 2) % 3)];
+      a3[static_cast<size_t>(up)] += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      a2[static_cast<size_t>(up)] += std::abs(std::arg((uv[ur] - uv[up]) / (uv[uq] - uv[up])));  // no flips: one orientation
+    }
+  double sum = 0;
+  int count = 0;
+  for (Index u = 0; u < tp.use_count; ++u)
+    if (tp.use_on_loop[static_cast<size_t>(u)]) {
+      const double d = a2[static_cast<size_t>(u)] - a3[static_cast<size_t>(u)];
+      sum += d * d;
+      ++count;
+    }
+  return std::sqrt(sum / count);
+}
+
+}  // namespace
+
+TEST_CASE("the boundary term lowers the turning-angle error along the loops of a curved strip") {
+  struct Case {
+    std::string name;
+    TriMesh mesh;
+  };
+  const Case cases[] = {
+      {"saddle strip", test::grid(60, 6, [](double u, double v) {
+         const double x = 4 * u - 2, y = 0.5 * v - 0.25;
+         return Vec3(x, y, 0.5 * (x * x - y * y));
+       })},
+      {"spherical band", test::grid(60, 6, [](double u, double v) {
+         const double th = 3.5 * u, ph = 0.2 + 0.5 * v;
+         return Vec3(std::cos(ph) * std::cos(th), std::cos(ph) * std::sin(th), std::sin(ph));
+       })},
+      {"saddle", test::saddle()},
+  };
+  for (const Case& c : cases)
+    for (Residual form : {Residual::PerHalfEdge, Residual::PerUse})
+    for (double s : {0.0, 1.0}) {
+      double prev = 1e300;
+      for (double mu : {0.0, 1.0, 10.0}) {
+        Face f;
+        f.set_mesh(c.mesh);
+        Options o = test::with_s(s, mu);
+        o.residual = form;
+        f.set_options(o);
+        f.solve(nullptr, nullptr);
+        const FlattenResult& r = f.result();
+        const double err = turning_angle_error(f);
+        const std::string label = c.name + (form == Residual::PerUse ? " (eq. 7 per use)" : "");
+        MESSAGE(label << " s=" << s << " mu=" << mu << ": turning-angle error (rms, rad) " << err << ", score " << r.report.quality.score);
+        CAPTURE(c.name);
+        CAPTURE(s);
+        CAPTURE(mu);
+        CHECK(r.report.quality.flips == 0);
+        CHECK(err < prev);
+        prev = err;
+      }
+    }
 }
