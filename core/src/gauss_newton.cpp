@@ -34,21 +34,31 @@ void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
 
 }  // namespace
 
-GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, const SpMatC& K,
+GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC K,
                          const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend)
     : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), rows_(std::move(rows)), own_chol_(backend) {
   const Index n = tp.use_count;
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(static_cast<size_t>(K.nonZeros()) * 4);
-  for (Index col = 0; col < K.outerSize(); ++col)
-    for (SpMatC::InnerIterator it(K, col); it; ++it)
-      for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b) trip.emplace_back(2 * static_cast<Index>(it.row()) + a, 2 * col + b, 0.0);
+  K.makeCompressed();
+  // H_'s pattern: each entry of K becomes a 2x2 block, written column by column in place (the
+  // triplet route held three copies at once and set the peak memory of the whole solve).
   H_.resize(2 * n, 2 * n);
-  H_.setFromTriplets(trip.begin(), trip.end());
-  H_.makeCompressed();
-  Kc_ = K;
-  Kc_.makeCompressed();
+  H_.resizeNonZeros(4 * K.nonZeros());
+  int* outer = H_.outerIndexPtr();
+  int* inner = H_.innerIndexPtr();
+  outer[0] = 0;
+  for (Index col = 0; col < K.outerSize(); ++col) {
+    const int begin = K.outerIndexPtr()[col], end = K.outerIndexPtr()[col + 1];
+    for (int b = 0; b < 2; ++b) {
+      int pos = outer[2 * col + b];
+      for (int v = begin; v < end; ++v) {
+        inner[pos++] = 2 * K.innerIndexPtr()[v];
+        inner[pos++] = 2 * K.innerIndexPtr()[v] + 1;
+      }
+      outer[2 * col + b + 1] = pos;
+    }
+  }
+  std::fill(H_.valuePtr(), H_.valuePtr() + H_.nonZeros(), 0.0);
+  Kc_ = std::move(K);
   if (B_) B_rows_ = *B_;
   if (form == Residual::PerUse) {
     // Rows per use: the half-edges opposite each use.

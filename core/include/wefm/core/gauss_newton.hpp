@@ -38,7 +38,7 @@ class GaussNewton {
   // K_pattern: the Hermitian energy at s = 0 (its pattern is the pattern of every Gauss-Newton
   // matrix). rows: constraints over the reduced unknowns that every step must keep (caller rows,
   // cycle closures); they hold at the starting layout.
-  GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, const SpMatC& K_pattern,
+  GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC K_pattern,
               const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend);
 
   // The gauge v = sum_k g_k y_k (a vector between two far uses). For s >= 1 only its direction is
