@@ -1,9 +1,9 @@
 #include "wefm/core/halfedges.hpp"
 
-#include <algorithm>
 #include <string>
 
 #include "wefm/core/error.hpp"
+#include "wefm/core/vertex_buckets.hpp"
 
 namespace wefm {
 
@@ -12,24 +12,14 @@ HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count)
   HalfEdges he;
   he.vertex_count = vertex_count;
   he.twin.assign(static_cast<size_t>(nh), -1);
-  // Sort half-edges by their undirected edge so partners are adjacent: O(n log n), no hashing.
-  struct Key {
-    std::uint64_t edge;
-    Index h;
-  };
-  std::vector<Key> keys(static_cast<size_t>(nh));
-  for (Index h = 0; h < nh; ++h) {
-    const Tri& t = triangles[static_cast<size_t>(h / 3)];
-    std::uint64_t a = static_cast<std::uint32_t>(t[h % 3]), b = static_cast<std::uint32_t>(t[(h % 3 + 1) % 3]);
-    if (a > b) std::swap(a, b);
-    keys[static_cast<size_t>(h)] = {(a << 32) | b, h};
-  }
-  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) { return x.edge < y.edge || (x.edge == y.edge && x.h < y.h); });
+  // Half-edges grouped by undirected edge (counting sort on the smaller vertex): partners adjacent,
+  // edges in (lo, hi) order, so the first offending edge is the one a full sort would find.
+  const std::vector<EdgeKey> keys = half_edges_by_edge(triangles, vertex_count);
   auto from = [&](Index h) { return triangles[static_cast<size_t>(h / 3)][h % 3]; };
   for (size_t i = 0; i < keys.size();) {
     size_t j = i + 1;
-    while (j < keys.size() && keys[j].edge == keys[i].edge) ++j;
-    const Index a = static_cast<Index>(keys[i].edge >> 32), b = static_cast<Index>(keys[i].edge & 0xffffffffu);
+    while (j < keys.size() && keys[j].hi == keys[i].hi && keys[j].lo == keys[i].lo) ++j;
+    const Index a = keys[i].lo, b = keys[i].hi;
     if (j - i > 2)
       fail(Errc::invalid_mesh, "non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) + "): shared by " +
                                    std::to_string(j - i) + " triangles (e.g. " + std::to_string(keys[i].h / 3) + ", " +

@@ -7,6 +7,7 @@
 #include "wefm/core/error.hpp"
 #include "wefm/core/halfedges.hpp"
 #include "wefm/core/union_find.hpp"
+#include "wefm/core/vertex_buckets.hpp"
 
 namespace wefm {
 
@@ -24,19 +25,9 @@ std::string tri_str(const TriMesh& m, size_t t) {
          std::to_string(f[2]) + ")";
 }
 
-// Triangles sorted by their vertex set: equal neighbours are duplicates.
-std::vector<size_t> sorted_by_vertex_set(const TriMesh& m, std::vector<Tri>& canon) {
-  canon = m.triangles;
-  for (Tri& f : canon) std::sort(f.begin(), f.end());
-  std::vector<size_t> order(canon.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return canon[a] < canon[b] || (canon[a] == canon[b] && a < b); });
-  return order;
-}
-
 // Corners of each vertex grouped into fans across shared edges; more than one fan = non-manifold vertex.
-std::vector<Index> fans_per_vertex(const TriMesh& m, const HalfEdges& he) {
-  const Index nc = static_cast<Index>(m.triangles.size() * 3);
+std::vector<Index> fans_per_vertex(const std::vector<Tri>& triangles, size_t vertex_count, const HalfEdges& he) {
+  const Index nc = static_cast<Index>(triangles.size() * 3);
   UnionFind uf(nc);
   for (Index h = 0; h < nc; ++h) {
     const Index g = he.twin[static_cast<size_t>(h)];
@@ -45,9 +36,9 @@ std::vector<Index> fans_per_vertex(const TriMesh& m, const HalfEdges& he) {
     uf.unite(h, HalfEdges::next(g));
     uf.unite(HalfEdges::next(h), g);
   }
-  std::vector<Index> fans(m.vertices.size(), 0);
+  std::vector<Index> fans(vertex_count, 0);
   for (Index c = 0; c < nc; ++c)
-    if (uf.find(c) == c) ++fans[static_cast<size_t>(m.triangles[static_cast<size_t>(c / 3)][c % 3])];
+    if (uf.find(c) == c) ++fans[static_cast<size_t>(triangles[static_cast<size_t>(c / 3)][c % 3])];
   return fans;
 }
 
@@ -87,71 +78,66 @@ MeshStats compute_stats(const TriMesh& m) {
     good.push_back(f);
   }
   for (char u : used) s.isolated_vertices += u ? 0 : 1;
-  TriMesh gm{m.vertices, good};
   double elen = 0;
-  for (size_t t = 0; t < good.size(); ++t) {
-    const double a = triangle_area(gm, static_cast<Index>(t));
-    if (!(a > 0)) ++s.degenerate_triangles;
-    if (std::isfinite(a)) s.area += a;
-    for (int j = 0; j < 3; ++j) elen += (gm.vertices[good[t][j]] - gm.vertices[good[t][(j + 1) % 3]]).norm();
+  for (const Tri& f : good) {
+    const Vec3 &a = m.vertices[static_cast<size_t>(f[0])], &b = m.vertices[static_cast<size_t>(f[1])], &c = m.vertices[static_cast<size_t>(f[2])];
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    if (!(area > 0)) ++s.degenerate_triangles;
+    if (std::isfinite(area)) s.area += area;
+    elen += (a - b).norm();  // three additions, in this order: the statistic is unchanged to the bit
+    elen += (b - c).norm();
+    elen += (c - a).norm();
   }
   if (!good.empty()) s.mean_edge_length = elen / (3.0 * static_cast<double>(good.size()));
   std::vector<Tri> canon;
-  auto order = sorted_by_vertex_set(gm, canon);
+  const auto order = triangles_by_vertex_set(good, static_cast<Index>(nv), canon);
   for (size_t i = 1; i < order.size(); ++i)
-    if (canon[order[i]] == canon[order[i - 1]]) ++s.duplicate_triangles;
-  // Edge statistics by sorting directed edges by their undirected key.
-  struct E {
-    std::uint64_t key;
-    Index from, tri;
-  };
-  std::vector<E> es;
-  es.reserve(good.size() * 3);
-  for (size_t t = 0; t < good.size(); ++t)
-    for (int j = 0; j < 3; ++j) {
-      std::uint64_t a = static_cast<std::uint32_t>(good[t][j]), b = static_cast<std::uint32_t>(good[t][(j + 1) % 3]);
-      es.push_back({(std::min(a, b) << 32) | std::max(a, b), good[t][j], static_cast<Index>(t)});
-    }
-  std::sort(es.begin(), es.end(), [](const E& x, const E& y) { return x.key < y.key; });
+    if (canon[static_cast<size_t>(order[i])] == canon[static_cast<size_t>(order[i - 1])]) ++s.duplicate_triangles;
+  // Edge statistics from the half-edges grouped by undirected edge; the twins of an edge-manifold,
+  // consistently oriented mesh fall out of the same pass.
+  const std::vector<EdgeKey> es = half_edges_by_edge(good, static_cast<Index>(nv));
+  HalfEdges he;
+  he.vertex_count = static_cast<Index>(nv);
+  he.twin.assign(es.size(), -1);
   UnionFind comp(static_cast<Index>(good.size()));
   std::int64_t edges = 0, boundary_edges = 0;
+  auto from = [&](Index h) { return good[static_cast<size_t>(h / 3)][h % 3]; };
   for (size_t i = 0; i < es.size();) {
     size_t j = i + 1;
-    while (j < es.size() && es[j].key == es[i].key) ++j;
+    while (j < es.size() && es[j].hi == es[i].hi && es[j].lo == es[i].lo) ++j;
     ++edges;
     if (j - i == 1) ++boundary_edges;
     if (j - i > 2) ++s.non_manifold_edges;
-    if (j - i == 2 && es[i].from == es[i + 1].from) ++s.inconsistent_edges;
-    for (size_t k = i + 1; k < j; ++k) comp.unite(es[i].tri, es[k].tri);
+    if (j - i == 2) {
+      if (from(es[i].h) == from(es[i + 1].h)) ++s.inconsistent_edges;
+      he.twin[static_cast<size_t>(es[i].h)] = es[i + 1].h;
+      he.twin[static_cast<size_t>(es[i + 1].h)] = es[i].h;
+    }
+    for (size_t k = i + 1; k < j; ++k) comp.unite(es[i].h / 3, es[k].h / 3);
     i = j;
   }
   for (Index t = 0; t < static_cast<Index>(good.size()); ++t) s.components += comp.find(t) == t ? 1 : 0;
   // Boundary loops and fans only make sense on an edge-manifold, oriented mesh.
   if (s.non_manifold_edges == 0 && s.inconsistent_edges == 0 && s.bad_indices == 0) {
-    try {
-      HalfEdges he = build_halfedges(good, static_cast<Index>(nv));
-      auto fans = fans_per_vertex(gm, he);
-      for (size_t v = 0; v < nv; ++v) s.non_manifold_vertices += fans[v] > 1 ? 1 : 0;
-      std::vector<char> seen(he.twin.size(), 0);
-      // Boundary cycles: follow boundary half-edges; next boundary half-edge out of b found by
-      // rotating around b through twins.
-      for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h) {
-        if (he.twin[static_cast<size_t>(h)] >= 0 || seen[static_cast<size_t>(h)]) continue;
-        ++s.boundary_loops;
-        Index x = h;
-        for (size_t guard = 0; guard <= he.twin.size() && !seen[static_cast<size_t>(x)]; ++guard) {
-          seen[static_cast<size_t>(x)] = 1;
-          Index y = HalfEdges::next(x);
-          while (he.twin[static_cast<size_t>(y)] >= 0) y = HalfEdges::next(he.twin[static_cast<size_t>(y)]);
-          x = y;
-        }
+    auto fans = fans_per_vertex(good, nv, he);
+    for (size_t v = 0; v < nv; ++v) s.non_manifold_vertices += fans[v] > 1 ? 1 : 0;
+    std::vector<char> seen(he.twin.size(), 0);
+    // Boundary cycles: follow boundary half-edges; next boundary half-edge out of b found by
+    // rotating around b through twins.
+    for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h) {
+      if (he.twin[static_cast<size_t>(h)] >= 0 || seen[static_cast<size_t>(h)]) continue;
+      ++s.boundary_loops;
+      Index x = h;
+      for (size_t guard = 0; guard <= he.twin.size() && !seen[static_cast<size_t>(x)]; ++guard) {
+        seen[static_cast<size_t>(x)] = 1;
+        Index y = HalfEdges::next(x);
+        while (he.twin[static_cast<size_t>(y)] >= 0) y = HalfEdges::next(he.twin[static_cast<size_t>(y)]);
+        x = y;
       }
-      const std::int64_t V = static_cast<std::int64_t>(nv) - s.isolated_vertices;
-      const std::int64_t chi = V - edges + static_cast<std::int64_t>(good.size());
-      s.genus = s.non_manifold_vertices ? -1 : (2 * s.components - chi - s.boundary_loops) / 2;
-    } catch (const Error&) {
-      s.genus = -1;
     }
+    const std::int64_t V = static_cast<std::int64_t>(nv) - s.isolated_vertices;
+    const std::int64_t chi = V - edges + static_cast<std::int64_t>(good.size());
+    s.genus = s.non_manifold_vertices ? -1 : (2 * s.components - chi - s.boundary_loops) / 2;
   } else {
     s.genus = -1;
   }
@@ -173,12 +159,13 @@ void validate_mesh(const TriMesh& m) {
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) fail(Errc::invalid_mesh, tri_str(m, t) + " repeats a vertex");
   }
   std::vector<Tri> canon;
-  auto order = sorted_by_vertex_set(m, canon);
+  const auto order = triangles_by_vertex_set(m.triangles, static_cast<Index>(nv), canon);
   for (size_t i = 1; i < order.size(); ++i)
-    if (canon[order[i]] == canon[order[i - 1]])
-      fail(Errc::invalid_mesh, "duplicate triangles: " + tri_str(m, order[i - 1]) + " and " + tri_str(m, order[i]) + " use the same vertices");
+    if (canon[static_cast<size_t>(order[i])] == canon[static_cast<size_t>(order[i - 1])])
+      fail(Errc::invalid_mesh, "duplicate triangles: " + tri_str(m, static_cast<size_t>(order[i - 1])) + " and " +
+                                   tri_str(m, static_cast<size_t>(order[i])) + " use the same vertices");
   HalfEdges he = build_halfedges(m.triangles, static_cast<Index>(nv));  // non-manifold edges, orientation
-  auto fans = fans_per_vertex(m, he);
+  auto fans = fans_per_vertex(m.triangles, nv, he);
   for (size_t v = 0; v < nv; ++v)
     if (fans[v] > 1)
       fail(Errc::invalid_mesh, "non-manifold vertex " + std::to_string(v) + ": its triangles form " + std::to_string(fans[v]) + " separate fans");

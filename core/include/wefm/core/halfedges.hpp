@@ -20,7 +20,7 @@ struct HalfEdges {
 };
 
 // Builds twins; throws invalid_mesh on an edge shared by more than two triangles or two triangles
-// traversing an edge the same way (inconsistent orientation).
+// traversing an edge the same way (inconsistent orientation). Vertex ids must lie in [0, vertex_count).
 HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count);
 
 // Half-edge from a to b, or -1. Linear in the valence of a via a vertex->outgoing index.
