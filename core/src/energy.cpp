@@ -1,13 +1,80 @@
 #include "wefm/core/energy.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "wefm/core/energy_assembler.hpp"
+#include "wefm/core/parallel.hpp"
+#include "wefm/core/use_corners.hpp"
 
 namespace wefm {
 
-std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s) {
+namespace {
+
+// w_h of eq. 9 with the per-use sums gathered in corner order: the same additions, in the same order,
+// as a scatter over ascending half-edges, and one pow per use instead of one per half-edge.
+std::vector<double> weights(const Topology& tp, const Coefficients& c, double k, const UseCorners& uc, int threads) {
+  const Index nh = static_cast<Index>(c.alpha.size());
+  std::vector<double> scale(static_cast<size_t>(tp.use_count));
+  parallel_for(threads, tp.use_count, [&](Index u0, Index u1) {
+    for (Index u = u0; u < u1; ++u) {
+      double inv_sum = 0.0;  // over the half-edges opposite the use's corners
+      for (Index q = uc.start[static_cast<size_t>(u)]; q < uc.start[static_cast<size_t>(u) + 1]; ++q)
+        inv_sum += 1.0 / c.beta[static_cast<size_t>(HalfEdges::next(uc.corner[static_cast<size_t>(q)]))];
+      scale[static_cast<size_t>(u)] = std::pow(inv_sum, -k);
+    }
+  });
+  std::vector<double> w(static_cast<size_t>(nh));
+  parallel_for(threads, nh, [&](Index h0, Index h1) {
+    for (Index h = h0; h < h1; ++h)
+      w[static_cast<size_t>(h)] = (1.0 / c.beta[static_cast<size_t>(h)]) *
+                                  scale[static_cast<size_t>(tp.corner_use[static_cast<size_t>(HalfEdges::prev(h))])];
+  });
+  return w;
+}
+
+// Rows of a column-major matrix, each row's entries in ascending column order (counting transpose).
+struct RowMajor {
+  std::vector<int> start, col;
+  std::vector<Complex> val;
+};
+
+RowMajor rows_of(const SpMatC& M) {
+  RowMajor r;
+  r.start.assign(static_cast<size_t>(M.rows()) + 1, 0);
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SpMatC::InnerIterator it(M, j); it; ++it) ++r.start[static_cast<size_t>(it.row()) + 1];
+  for (size_t i = 1; i < r.start.size(); ++i) r.start[i] += r.start[i - 1];
+  r.col.resize(static_cast<size_t>(r.start.back()));
+  r.val.resize(r.col.size());
+  std::vector<int> fill(r.start.begin(), r.start.end() - 1);
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SpMatC::InnerIterator it(M, j); it; ++it) {
+      const size_t q = static_cast<size_t>(fill[static_cast<size_t>(it.row())]++);
+      r.col[q] = static_cast<int>(j);
+      r.val[q] = it.value();
+    }
+  return r;
+}
+
+// Columns of K per block, computed by one thread: what the block contributes, before the blocks are
+// laid end to end.
+struct ColumnBlock {
+  std::vector<int> count, row;
+  std::vector<Complex> val;
+};
+
+constexpr Index kColumnBlock = 8192;
+
+}  // namespace
+
+std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s, int threads) {
   std::vector<Complex> sigma(c.alpha.size());
   const bool use_rho = s != 0.0 && !rho.empty();
-  for (size_t h = 0; h < sigma.size(); ++h) sigma[h] = Complex(c.alpha[h], c.beta[h] * (use_rho ? std::pow(rho[h], s) : 1.0));
+  parallel_for(threads, static_cast<Index>(sigma.size()), [&](Index h0, Index h1) {
+    for (size_t h = static_cast<size_t>(h0); h < static_cast<size_t>(h1); ++h)
+      sigma[h] = Complex(c.alpha[h], c.beta[h] * (use_rho ? std::pow(rho[h], s) : 1.0));
+  });
   return sigma;
 }
 
@@ -21,36 +88,45 @@ std::vector<double> compute_rho(const Topology& tp, const Coefficients& c, const
   return rho;
 }
 
-std::vector<double> compute_weights(const Topology& tp, const Coefficients& c, double k) {
-  const size_t nh = c.alpha.size();
-  std::vector<double> inv_sum(static_cast<size_t>(tp.use_count), 0.0);
-  for (size_t h = 0; h < nh; ++h) inv_sum[static_cast<size_t>(tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))])] += 1.0 / c.beta[h];
-  std::vector<double> w(nh);
-  for (size_t h = 0; h < nh; ++h)
-    w[h] = (1.0 / c.beta[h]) * std::pow(inv_sum[static_cast<size_t>(tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))])], -k);
-  return w;
+std::vector<double> compute_weights(const Topology& tp, const Coefficients& c, double k, int threads) {
+  return weights(tp, c, k, use_corners(tp), threads);
 }
 
-SpMatC assemble_surface_operator(const Topology& tp, const Coefficients& c, const std::vector<Complex>& sigma, double k, Residual form) {
+SpMatC assemble_surface_operator(const Topology& tp, const Coefficients& c, const std::vector<Complex>& sigma, double k, Residual form,
+                                 int threads) {
   const Index n = tp.use_count;
   const size_t nh = c.alpha.size();
-  const std::vector<double> w = compute_weights(tp, c, k);
-  std::vector<Eigen::Triplet<Complex>> trip;
-  trip.reserve(nh * 3);
+  const UseCorners uc = use_corners(tp);
+  const std::vector<double> w = weights(tp, c, k, uc, threads);
   if (form == Residual::PerHalfEdge) {
-    for (size_t h = 0; h < nh; ++h) {
-      const Index i = tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))];
-      const Index i1 = tp.corner_use[h], i2 = tp.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))];
-      const double sw = std::sqrt(w[h]);
-      const Index r = static_cast<Index>(h);
-      trip.emplace_back(r, i, Complex(sw, 0));
-      trip.emplace_back(r, i1, -sw * (1.0 - sigma[h]));
-      trip.emplace_back(r, i2, -sw * sigma[h]);
-    }
+    // Row h holds its triangle's three uses, so column u holds the three rows of every triangle at a
+    // corner of u: the pattern follows from the use's corners without triplets or sorting (rows
+    // ascend because corners do; the uses of one triangle are distinct vertices).
     SpMatC A(static_cast<Index>(nh), n);
-    A.setFromTriplets(trip.begin(), trip.end());
+    A.resizeNonZeros(static_cast<Index>(3 * nh));
+    int* outer = A.outerIndexPtr();
+    for (Index u = 0; u <= n; ++u) outer[u] = 3 * uc.start[static_cast<size_t>(u)];
+    int* inner = A.innerIndexPtr();
+    Complex* value = A.valuePtr();
+    parallel_for(threads, n, [&](Index u0, Index u1) {
+      for (Index u = u0; u < u1; ++u) {
+        size_t q = static_cast<size_t>(outer[u]);
+        for (Index p = uc.start[static_cast<size_t>(u)]; p < uc.start[static_cast<size_t>(u) + 1]; ++p) {
+          const Index corner = uc.corner[static_cast<size_t>(p)];
+          for (Index h = corner - corner % 3; h < corner - corner % 3 + 3; ++h, ++q) {
+            const double sw = std::sqrt(w[static_cast<size_t>(h)]);
+            inner[q] = h;
+            if (corner == HalfEdges::prev(h)) value[q] = Complex(sw, 0);               // the use predicted
+            else if (corner == h) value[q] = -sw * (1.0 - sigma[static_cast<size_t>(h)]);  // base start
+            else value[q] = -sw * sigma[static_cast<size_t>(h)];                      // base end
+          }
+        }
+      }
+    });
     return A;
   }
+  std::vector<Eigen::Triplet<Complex>> trip;
+  trip.reserve(nh * 3);
   for (size_t h = 0; h < nh; ++h) {
     const Index i = tp.corner_use[static_cast<size_t>(HalfEdges::prev(static_cast<Index>(h)))];
     const Index i1 = tp.corner_use[h], i2 = tp.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))];
@@ -111,11 +187,88 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
   return B;
 }
 
-SpMatC assemble_energy(const SpMatC& A, const SpMatC* B) {
-  SpMatC K = SpMatC(A.adjoint()) * A;
-  if (B && B->nonZeros()) K += SpMatC(B->adjoint()) * (*B);
-  K.makeCompressed();
+SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads) {
+  // K = A^H A + B^H B column by column (Gustavson): K(:, j) = sum over the rows r of column j of
+  // conj(row r) * M(r, j), A's rows first, then B's, each in ascending order. Every column is one
+  // thread's work in a fixed order, so K is bit-identical for any thread count, and no product,
+  // adjoint copy or sum of matrices is materialised.
+  const Index n = A.cols();
+  const bool with_b = B && B->nonZeros();
+  const RowMajor ar = rows_of(A);
+  const RowMajor br = with_b ? rows_of(*B) : RowMajor{};
+  const Index blocks = (n + kColumnBlock - 1) / kColumnBlock;
+  std::vector<ColumnBlock> out(static_cast<size_t>(blocks));
+  parallel_for(
+      threads, blocks,
+      [&](Index b0, Index b1) {
+        std::vector<Index> mark(static_cast<size_t>(n), -1);
+        std::vector<Complex> acc(static_cast<size_t>(n));
+        std::vector<int> rows;
+        for (Index b = b0; b < b1; ++b) {
+          ColumnBlock& cb = out[static_cast<size_t>(b)];
+          const Index j0 = b * kColumnBlock, j1 = std::min(n, j0 + kColumnBlock);
+          cb.count.assign(static_cast<size_t>(j1 - j0), 0);
+          for (Index j = j0; j < j1; ++j) {
+            rows.clear();
+            auto add = [&](const SpMatC& M, const RowMajor& R) {
+              for (SpMatC::InnerIterator it(M, j); it; ++it) {
+                const Complex a = it.value();
+                const size_t r = static_cast<size_t>(it.row());
+                for (int q = R.start[r]; q < R.start[r + 1]; ++q) {
+                  const int kk = R.col[static_cast<size_t>(q)];
+                  if (mark[static_cast<size_t>(kk)] != j) {
+                    mark[static_cast<size_t>(kk)] = j;
+                    acc[static_cast<size_t>(kk)] = Complex(0, 0);
+                    rows.push_back(kk);
+                  }
+                  acc[static_cast<size_t>(kk)] += std::conj(R.val[static_cast<size_t>(q)]) * a;
+                }
+              }
+            };
+            add(A, ar);
+            if (with_b) add(*B, br);
+            std::sort(rows.begin(), rows.end());
+            cb.count[static_cast<size_t>(j - j0)] = static_cast<int>(rows.size());
+            for (int kk : rows) {
+              cb.row.push_back(kk);
+              cb.val.push_back(acc[static_cast<size_t>(kk)]);
+            }
+          }
+        }
+      },
+      1);
+  SpMatC K(n, n);
+  std::vector<size_t> offset(static_cast<size_t>(blocks) + 1, 0);
+  for (Index b = 0; b < blocks; ++b) offset[static_cast<size_t>(b) + 1] = offset[static_cast<size_t>(b)] + out[static_cast<size_t>(b)].row.size();
+  K.resizeNonZeros(static_cast<Index>(offset.back()));
+  int* outer = K.outerIndexPtr();
+  outer[0] = 0;
+  for (Index b = 0; b < blocks; ++b) {
+    const ColumnBlock& cb = out[static_cast<size_t>(b)];
+    for (size_t i = 0; i < cb.count.size(); ++i) {
+      const Index j = b * kColumnBlock + static_cast<Index>(i);
+      outer[j + 1] = outer[j] + cb.count[i];
+    }
+  }
+  parallel_for(
+      threads, blocks,
+      [&](Index b0, Index b1) {
+        for (Index b = b0; b < b1; ++b) {
+          ColumnBlock& cb = out[static_cast<size_t>(b)];
+          std::copy(cb.row.begin(), cb.row.end(), K.innerIndexPtr() + offset[static_cast<size_t>(b)]);
+          std::copy(cb.val.begin(), cb.val.end(), K.valuePtr() + offset[static_cast<size_t>(b)]);
+          cb = ColumnBlock{};
+        }
+      },
+      1);
   return K;
+}
+
+SpMatC assemble_energy(const Topology& tp, const Coefficients& c, const std::vector<Complex>& sigma, double k, Residual form,
+                       const SpMatC* B, int threads) {
+  if (form == Residual::PerHalfEdge)
+    return EnergyAssembler(tp, B, threads).assemble(compute_weights(tp, c, k, threads), sigma, threads);
+  return assemble_energy(assemble_surface_operator(tp, c, sigma, k, form, threads), B, threads);
 }
 
 double energy_value(const SpMatC& A, const SpMatC* B, const VectorXc& z) {

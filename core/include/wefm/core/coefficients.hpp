@@ -20,6 +20,9 @@ struct Coefficients {
   Index degenerate_triangles = 0;   // triangles with zero area
 };
 
-Coefficients compute_coefficients(const TriMesh& mesh, const Topology& topo, bool curvature_adjust, double min_beta);
+// `threads` (Options::threads; <= 1 runs in the caller's thread) splits the work; the result is
+// bit-identical for every thread count (see parallel.hpp).
+Coefficients compute_coefficients(const TriMesh& mesh, const Topology& topo, bool curvature_adjust, double min_beta,
+                                  int threads = 1);
 
 }  // namespace wefm
