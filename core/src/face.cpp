@@ -14,8 +14,9 @@ void Face::require_mesh(const char* what) const {
 }
 
 void Face::set_mesh(TriMesh mesh) {
-  validate_mesh(mesh);
+  HalfEdges he = validate_mesh(mesh);
   mesh_ = std::move(mesh);
+  half_edges_ = std::move(he);
   has_mesh_ = true;
   spec_ = TopologySpec{};
   topo_.reset();
@@ -103,14 +104,14 @@ const Topology& Face::topology() {
     cut_ = AutoCut{};
     if (auto_cut_applies()) cut_ = compute_auto_cut(mesh_);
     if (cut_.seams.empty()) {
-      topo_ = build_topology(mesh_, spec_);
+      topo_ = build_topology(mesh_, spec_, &half_edges_);
     } else {
       // The cut annulus or sphere has one loop: a boundary-cycle index given for the uncut face
       // does not apply to it.
       TopologySpec cut_spec = spec_;
       cut_spec.seams = cut_.seams;
       cut_spec.outer_loop = -1;
-      topo_ = build_topology(mesh_, cut_spec);
+      topo_ = build_topology(mesh_, cut_spec, &half_edges_);
     }
   }
   return *topo_;

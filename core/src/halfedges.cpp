@@ -14,26 +14,29 @@ HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count)
   he.twin.assign(static_cast<size_t>(nh), -1);
   // Half-edges grouped by undirected edge (counting sort on the smaller vertex): partners adjacent,
   // edges in (lo, hi) order, so the first offending edge is the one a full sort would find.
-  const std::vector<EdgeKey> keys = half_edges_by_edge(triangles, vertex_count);
+  const EdgeBuckets eb = half_edges_by_edge(triangles, vertex_count);
   auto from = [&](Index h) { return triangles[static_cast<size_t>(h / 3)][h % 3]; };
-  for (size_t i = 0; i < keys.size();) {
-    size_t j = i + 1;
-    while (j < keys.size() && keys[j].hi == keys[i].hi && keys[j].lo == keys[i].lo) ++j;
-    const Index a = keys[i].lo, b = keys[i].hi;
-    if (j - i > 2)
-      fail(Errc::invalid_mesh, "non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) + "): shared by " +
-                                   std::to_string(j - i) + " triangles (e.g. " + std::to_string(keys[i].h / 3) + ", " +
-                                   std::to_string(keys[i + 1].h / 3) + ", " + std::to_string(keys[i + 2].h / 3) + ")");
-    if (j - i == 2) {
-      const Index h0 = keys[i].h, h1 = keys[i + 1].h;
-      if (from(h0) == from(h1))
-        fail(Errc::invalid_mesh, "inconsistent triangle orientation: triangles " + std::to_string(h0 / 3) + " and " +
-                                     std::to_string(h1 / 3) + " both traverse edge (" + std::to_string(from(h0)) + ", " +
-                                     std::to_string(from(h0) == a ? b : a) + ") the same way");
-      he.twin[static_cast<size_t>(h0)] = h1;
-      he.twin[static_cast<size_t>(h1)] = h0;
+  for (Index a = 0; a < vertex_count; ++a) {
+    const EdgeBuckets::Entry* e = eb.entries.data();
+    for (Index i = eb.start[static_cast<size_t>(a)], end = eb.start[static_cast<size_t>(a) + 1]; i < end;) {
+      Index j = i + 1;
+      while (j < end && e[j].hi == e[i].hi) ++j;
+      const Index b = e[i].hi;
+      if (j - i > 2)
+        fail(Errc::invalid_mesh, "non-manifold edge (" + std::to_string(a) + ", " + std::to_string(b) + "): shared by " +
+                                     std::to_string(j - i) + " triangles (e.g. " + std::to_string(e[i].h / 3) + ", " +
+                                     std::to_string(e[i + 1].h / 3) + ", " + std::to_string(e[i + 2].h / 3) + ")");
+      if (j - i == 2) {
+        const Index h0 = e[i].h, h1 = e[i + 1].h;
+        if (from(h0) == from(h1))
+          fail(Errc::invalid_mesh, "inconsistent triangle orientation: triangles " + std::to_string(h0 / 3) + " and " +
+                                       std::to_string(h1 / 3) + " both traverse edge (" + std::to_string(from(h0)) + ", " +
+                                       std::to_string(from(h0) == a ? b : a) + ") the same way");
+        he.twin[static_cast<size_t>(h0)] = h1;
+        he.twin[static_cast<size_t>(h1)] = h0;
+      }
+      i = j;
     }
-    i = j;
   }
   return he;
 }

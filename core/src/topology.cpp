@@ -51,9 +51,9 @@ double loop_length_3d(const TriMesh& m, const Topology& topo, Index loop) {
   return len;
 }
 
-Topology build_topology(const TriMesh& m, const TopologySpec& spec) {
+Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEdges* half_edges) {
   Topology tp;
-  tp.he = build_halfedges(m.triangles, static_cast<Index>(m.vertices.size()));
+  tp.he = half_edges ? *half_edges : build_halfedges(m.triangles, static_cast<Index>(m.vertices.size()));
   const HalfEdges& he = tp.he;
   HalfEdgeLookup look(m.triangles, static_cast<Index>(m.vertices.size()));
   const Index nh = static_cast<Index>(he.twin.size());

@@ -95,27 +95,29 @@ MeshStats compute_stats(const TriMesh& m) {
     if (canon[static_cast<size_t>(order[i])] == canon[static_cast<size_t>(order[i - 1])]) ++s.duplicate_triangles;
   // Edge statistics from the half-edges grouped by undirected edge; the twins of an edge-manifold,
   // consistently oriented mesh fall out of the same pass.
-  const std::vector<EdgeKey> es = half_edges_by_edge(good, static_cast<Index>(nv));
+  const EdgeBuckets eb = half_edges_by_edge(good, static_cast<Index>(nv));
   HalfEdges he;
   he.vertex_count = static_cast<Index>(nv);
-  he.twin.assign(es.size(), -1);
+  he.twin.assign(eb.entries.size(), -1);
   UnionFind comp(static_cast<Index>(good.size()));
   std::int64_t edges = 0, boundary_edges = 0;
   auto from = [&](Index h) { return good[static_cast<size_t>(h / 3)][h % 3]; };
-  for (size_t i = 0; i < es.size();) {
-    size_t j = i + 1;
-    while (j < es.size() && es[j].hi == es[i].hi && es[j].lo == es[i].lo) ++j;
-    ++edges;
-    if (j - i == 1) ++boundary_edges;
-    if (j - i > 2) ++s.non_manifold_edges;
-    if (j - i == 2) {
-      if (from(es[i].h) == from(es[i + 1].h)) ++s.inconsistent_edges;
-      he.twin[static_cast<size_t>(es[i].h)] = es[i + 1].h;
-      he.twin[static_cast<size_t>(es[i + 1].h)] = es[i].h;
+  const EdgeBuckets::Entry* e = eb.entries.data();
+  for (size_t a = 0; a < nv; ++a)
+    for (Index i = eb.start[a], end = eb.start[a + 1]; i < end;) {
+      Index j = i + 1;
+      while (j < end && e[j].hi == e[i].hi) ++j;
+      ++edges;
+      if (j - i == 1) ++boundary_edges;
+      if (j - i > 2) ++s.non_manifold_edges;
+      if (j - i == 2) {
+        if (from(e[i].h) == from(e[i + 1].h)) ++s.inconsistent_edges;
+        he.twin[static_cast<size_t>(e[i].h)] = e[i + 1].h;
+        he.twin[static_cast<size_t>(e[i + 1].h)] = e[i].h;
+      }
+      for (Index k = i + 1; k < j; ++k) comp.unite(e[i].h / 3, e[k].h / 3);
+      i = j;
     }
-    for (size_t k = i + 1; k < j; ++k) comp.unite(es[i].h / 3, es[k].h / 3);
-    i = j;
-  }
   for (Index t = 0; t < static_cast<Index>(good.size()); ++t) s.components += comp.find(t) == t ? 1 : 0;
   // Boundary loops and fans only make sense on an edge-manifold, oriented mesh.
   if (s.non_manifold_edges == 0 && s.inconsistent_edges == 0 && s.bad_indices == 0) {
@@ -144,7 +146,7 @@ MeshStats compute_stats(const TriMesh& m) {
   return s;
 }
 
-void validate_mesh(const TriMesh& m) {
+HalfEdges validate_mesh(const TriMesh& m) {
   const size_t nv = m.vertices.size(), nt = m.triangles.size();
   if (nv < 3 || nt < 1) fail(Errc::invalid_mesh, "a face needs at least 3 vertices and 1 triangle (got " + std::to_string(nv) + " vertices, " + std::to_string(nt) + " triangles)");
   if (nv > 0x7fffffff || nt > 0x7fffffff / 3) fail(Errc::invalid_mesh, "too many vertices or triangles for 32-bit indices");
@@ -175,6 +177,7 @@ void validate_mesh(const TriMesh& m) {
   for (Index t = 0; t < static_cast<Index>(nt); ++t)
     if (comp.find(t) != 0)
       fail(Errc::invalid_mesh, "the mesh has several connected components (" + tri_str(m, static_cast<size_t>(t)) + " is not connected to triangle 0); flatten each component as its own face");
+  return he;
 }
 
 }  // namespace wefm

@@ -56,6 +56,7 @@ class Face {
   bool auto_cut_applies() const;
 
   TriMesh mesh_;
+  HalfEdges half_edges_;  // from validating the mesh; every topology of this mesh starts from them
   bool has_mesh_ = false;
   TopologySpec spec_;
   std::optional<Topology> topo_;

@@ -49,7 +49,8 @@ struct Topology {
 
 // Validates the spec against the mesh (which must already pass validate_mesh) and builds uses,
 // loops and repeated edges. Throws Error(invalid_topology) naming the edge, loop or facet edge.
-Topology build_topology(const TriMesh& mesh, const TopologySpec& spec);
+// `half_edges`: the mesh's half-edges if already built (validate_mesh returns them), else null.
+Topology build_topology(const TriMesh& mesh, const TopologySpec& spec, const HalfEdges* half_edges = nullptr);
 
 // 3D length of a loop (sum of its facet edges).
 double loop_length_3d(const TriMesh& mesh, const Topology& topo, Index loop);

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "wefm/core/halfedges.hpp"
 #include "wefm/core/types.hpp"
 
 namespace wefm {
@@ -26,7 +27,8 @@ MeshStats compute_stats(const TriMesh& mesh);
 
 // Throws Error(invalid_mesh) naming the first offending vertex/triangle/edge. Accepts zero-area
 // triangles (they are regularised by min_beta) and unreferenced vertices (they get no use).
-void validate_mesh(const TriMesh& mesh);
+// Returns the half-edges it built, so that the topology need not build them again.
+HalfEdges validate_mesh(const TriMesh& mesh);
 
 double triangle_area(const TriMesh& mesh, Index t);
 

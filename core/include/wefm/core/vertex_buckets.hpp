@@ -9,14 +9,18 @@
 
 namespace wefm {
 
-// Half-edge h = 3t + j (corner j to j+1 of triangle t) as its undirected edge lo < hi.
-struct EdgeKey {
-  Index lo, hi, h;
+// Half-edges by undirected edge (lo, hi), lo < hi: the half-edges whose smaller vertex is lo are
+// entries[start[lo] .. start[lo + 1]), sorted by (hi, h). Equal hi in a bucket: one facet edge.
+struct EdgeBuckets {
+  struct Entry {
+    Index hi, h;  // h = 3t + j runs from corner j to corner j+1 of triangle t
+  };
+  std::vector<Index> start;
+  std::vector<Entry> entries;
 };
 
-// Every half-edge sorted by (lo, hi, h); equal (lo, hi) are the half-edges of one facet edge.
 // Triangle vertex ids must lie in [0, vertex_count).
-std::vector<EdgeKey> half_edges_by_edge(const std::vector<Tri>& triangles, Index vertex_count);
+EdgeBuckets half_edges_by_edge(const std::vector<Tri>& triangles, Index vertex_count);
 
 // Triangle indices sorted by (sorted vertex triple, index); `canon` receives each triangle's
 // sorted triple. Equal neighbours use the same three vertices.
