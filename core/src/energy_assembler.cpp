@@ -29,18 +29,28 @@ EnergyAssembler::EnergyAssembler(const Topology& tp, const SpMatC* B, int thread
       threads, blocks,
       [&](Index b0, Index b1) {
         std::vector<int> rows;
+        std::vector<Index> seen(static_cast<size_t>(n), -1);  // seen[r] == u: r is already a row of column u
         for (Index b = b0; b < b1; ++b) {
           std::vector<int>& out = block_rows[static_cast<size_t>(b)];
           for (Index u = b * kColumnBlock; u < std::min(n, (b + 1) * kColumnBlock); ++u) {
             rows.clear();
+            auto add = [&](Index r) {
+              if (seen[static_cast<size_t>(r)] == u) return;
+              seen[static_cast<size_t>(r)] = u;
+              rows.push_back(r);
+            };
             for (Index q = uc_.start[static_cast<size_t>(u)]; q < uc_.start[static_cast<size_t>(u) + 1]; ++q) {
               const Index t3 = uc_.corner[static_cast<size_t>(q)] / 3 * 3;
-              for (Index r = 0; r < 3; ++r) rows.push_back(tp.corner_use[static_cast<size_t>(t3 + r)]);
+              for (Index r = 0; r < 3; ++r) add(tp.corner_use[static_cast<size_t>(t3 + r)]);
             }
             if (with_b)
-              for (SpMatC::InnerIterator it(btb_, u); it; ++it) rows.push_back(static_cast<int>(it.row()));
-            std::sort(rows.begin(), rows.end());
-            rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+              for (SpMatC::InnerIterator it(btb_, u); it; ++it) add(static_cast<Index>(it.row()));
+            if (rows.size() <= 32) {  // a one-ring: insertion sort
+              for (size_t i = 1; i < rows.size(); ++i)
+                for (size_t j = i; j > 0 && rows[j] < rows[j - 1]; --j) std::swap(rows[j], rows[j - 1]);
+            } else {
+              std::sort(rows.begin(), rows.end());
+            }
             count[static_cast<size_t>(u)] = static_cast<int>(rows.size());
             out.insert(out.end(), rows.begin(), rows.end());
           }
@@ -78,37 +88,71 @@ EnergyAssembler::EnergyAssembler(const Topology& tp, const SpMatC* B, int thread
       1);
 }
 
+namespace {
+
+// Column `col` of triangle t3/3's block: entry r = sum over its half-edges j of
+// w_j conj(a_j[r]) a_j[col], where half-edge j predicts corner j+2 from its base j -> j+1 with
+// coefficients 1 at corner j+2, -(1 - sigma_j) at j and -sigma_j at j+1 (METHOD §5).
+// conj(x) y is formed in reals so that entry (r, c) and (c, r) are exact conjugates.
+inline void block_column(const double* w, const Complex* sigma, Index col, Complex v[3]) {
+  Complex a[3][3];
+  for (Index j = 0; j < 3; ++j) {
+    a[j][j] = -(1.0 - sigma[j]);
+    a[j][(j + 1) % 3] = -sigma[j];
+    a[j][(j + 2) % 3] = Complex(1, 0);
+  }
+  for (Index r = 0; r < 3; ++r) {
+    double re = 0.0, im = 0.0;
+    for (Index j = 0; j < 3; ++j) {
+      const Complex x = a[j][r], y = a[j][col];
+      re += w[j] * (x.real() * y.real() + x.imag() * y.imag());
+      im += w[j] * (x.real() * y.imag() - x.imag() * y.real());
+    }
+    v[r] = Complex(re, im);
+  }
+}
+
+}  // namespace
+
 SpMatC EnergyAssembler::assemble(const std::vector<double>& w, const std::vector<Complex>& sigma, int threads) const {
   const Topology& tp = *tp_;
   const Index n = tp.use_count;
+  const Index nt = static_cast<Index>(tp.corner_use.size() / 3);
   SpMatC K(n, n);
   K.resizeNonZeros(static_cast<Index>(row_.size()));
   std::copy(outer_.begin(), outer_.end(), K.outerIndexPtr());
   std::copy(row_.begin(), row_.end(), K.innerIndexPtr());
   Complex* value = K.valuePtr();
+  auto add_btb = [&](Index u) {
+    for (int p = btb_.outerIndexPtr()[u]; p < btb_.outerIndexPtr()[u + 1]; ++p) value[btb_slot_[static_cast<size_t>(p)]] += btb_.valuePtr()[p];
+  };
+  if (threads <= 1) {
+    // One thread: triangles in order, each block scattered to its slots. Every entry receives its
+    // terms in ascending triangle order, then B^H B's: the order of the gather below, so the bits
+    // are the same, with the per-triangle data read sequentially.
+    std::fill(value, value + row_.size(), Complex(0, 0));
+    for (Index t = 0; t < nt; ++t)
+      for (Index col = 0; col < 3; ++col) {
+        Complex v[3];
+        block_column(&w[3 * static_cast<size_t>(t)], &sigma[3 * static_cast<size_t>(t)], col, v);
+        const int* slot = &slot_[9 * static_cast<size_t>(t) + 3 * static_cast<size_t>(col)];
+        for (Index r = 0; r < 3; ++r) value[slot[r]] += v[r];
+      }
+    if (btb_.nonZeros())
+      for (Index u = 0; u < n; ++u) add_btb(u);
+    return K;
+  }
+  // Threads: each column gathers its blocks in ascending corner (= triangle) order, then B^H B's.
   parallel_for(threads, n, [&](Index u0, Index u1) {
     std::fill(value + outer_[static_cast<size_t>(u0)], value + outer_[static_cast<size_t>(u1)], Complex(0, 0));
     for (Index u = u0; u < u1; ++u) {
       for (Index q = uc_.start[static_cast<size_t>(u)]; q < uc_.start[static_cast<size_t>(u) + 1]; ++q) {
-        const Index c = uc_.corner[static_cast<size_t>(q)], t3 = c / 3 * 3, col = c - t3;
-        // Half-edge j of the triangle predicts corner j+2 from its base j -> j+1: coefficients
-        // 1 at corner j+2, -(1 - sigma) at j, -sigma at j+1 (METHOD §5), weight w.
-        Complex a[3][3];
-        for (Index j = 0; j < 3; ++j) {
-          const Complex s = sigma[static_cast<size_t>(t3 + j)];
-          a[j][j] = -(1.0 - s);
-          a[j][(j + 1) % 3] = -s;
-          a[j][(j + 2) % 3] = Complex(1, 0);
-        }
-        for (Index r = 0; r < 3; ++r) {
-          Complex v(0, 0);
-          for (Index j = 0; j < 3; ++j) v += w[static_cast<size_t>(t3 + j)] * (std::conj(a[j][r]) * a[j][col]);
-          value[slot_[3 * static_cast<size_t>(c) + static_cast<size_t>(r)]] += v;
-        }
+        const Index c = uc_.corner[static_cast<size_t>(q)], t3 = c / 3 * 3;
+        Complex v[3];
+        block_column(&w[static_cast<size_t>(t3)], &sigma[static_cast<size_t>(t3)], c - t3, v);
+        for (Index r = 0; r < 3; ++r) value[slot_[3 * static_cast<size_t>(c) + static_cast<size_t>(r)]] += v[r];
       }
-      if (btb_.nonZeros())
-        for (int p = btb_.outerIndexPtr()[u]; p < btb_.outerIndexPtr()[u + 1]; ++p)
-          value[btb_slot_[static_cast<size_t>(p)]] += btb_.valuePtr()[p];
+      if (btb_.nonZeros()) add_btb(u);
     }
   });
   return K;
