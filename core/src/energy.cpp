@@ -189,9 +189,10 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
 
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads) {
   // K = A^H A + B^H B column by column (Gustavson): K(:, j) = sum over the rows r of column j of
-  // conj(row r) * M(r, j), A's rows first, then B's, each in ascending order. Every column is one
-  // thread's work in a fixed order, so K is bit-identical for any thread count, and no product,
-  // adjoint copy or sum of matrices is materialised.
+  // conj(row r) * M(r, j), rows in ascending order, A's and B's sums kept apart and added last, as
+  // Eigen's product-then-sum did, so K has the bits it had. Every column is one thread's work in a
+  // fixed order, so K is bit-identical for any thread count, and no product, adjoint copy or sum of
+  // matrices is materialised.
   const Index n = A.cols();
   const bool with_b = B && B->nonZeros();
   const RowMajor ar = rows_of(A);
@@ -201,8 +202,8 @@ SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads) {
   parallel_for(
       threads, blocks,
       [&](Index b0, Index b1) {
-        std::vector<Index> mark(static_cast<size_t>(n), -1);
-        std::vector<Complex> acc(static_cast<size_t>(n));
+        std::vector<Index> mark(static_cast<size_t>(n), -1), mark_b(with_b ? static_cast<size_t>(n) : 0, -1);
+        std::vector<Complex> acc(static_cast<size_t>(n)), acc_b(with_b ? static_cast<size_t>(n) : 0);
         std::vector<int> rows;
         for (Index b = b0; b < b1; ++b) {
           ColumnBlock& cb = out[static_cast<size_t>(b)];
@@ -210,28 +211,36 @@ SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads) {
           cb.count.assign(static_cast<size_t>(j1 - j0), 0);
           for (Index j = j0; j < j1; ++j) {
             rows.clear();
-            auto add = [&](const SpMatC& M, const RowMajor& R) {
+            auto add = [&](const SpMatC& M, const RowMajor& R, std::vector<Index>& mk, std::vector<Complex>& ac) {
               for (SpMatC::InnerIterator it(M, j); it; ++it) {
                 const Complex a = it.value();
                 const size_t r = static_cast<size_t>(it.row());
                 for (int q = R.start[r]; q < R.start[r + 1]; ++q) {
-                  const int kk = R.col[static_cast<size_t>(q)];
-                  if (mark[static_cast<size_t>(kk)] != j) {
-                    mark[static_cast<size_t>(kk)] = j;
-                    acc[static_cast<size_t>(kk)] = Complex(0, 0);
-                    rows.push_back(kk);
+                  const size_t kk = static_cast<size_t>(R.col[static_cast<size_t>(q)]);
+                  const Complex term = std::conj(R.val[static_cast<size_t>(q)]) * a;
+                  const bool new_row = mark[kk] != j;  // B's rows may be new to column j too
+                  if (mk[kk] != j) {
+                    mk[kk] = j;
+                    ac[kk] = term;
+                  } else {
+                    ac[kk] += term;
                   }
-                  acc[static_cast<size_t>(kk)] += std::conj(R.val[static_cast<size_t>(q)]) * a;
+                  if (new_row) {
+                    mark[kk] = j;
+                    if (&ac != &acc) acc[kk] = Complex(0, 0);
+                    rows.push_back(static_cast<int>(kk));
+                  }
                 }
               }
             };
-            add(A, ar);
-            if (with_b) add(*B, br);
+            add(A, ar, mark, acc);
+            if (with_b) add(*B, br, mark_b, acc_b);
             std::sort(rows.begin(), rows.end());
             cb.count[static_cast<size_t>(j - j0)] = static_cast<int>(rows.size());
             for (int kk : rows) {
               cb.row.push_back(kk);
-              cb.val.push_back(acc[static_cast<size_t>(kk)]);
+              cb.val.push_back(with_b && mark_b[static_cast<size_t>(kk)] == j ? acc[static_cast<size_t>(kk)] + acc_b[static_cast<size_t>(kk)]
+                                                                             : acc[static_cast<size_t>(kk)]);
             }
           }
         }
