@@ -63,7 +63,8 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   stage.check(0.0, "coefficients");
 
   double t0 = now();
-  const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta);
+  const int threads = std::max(1, opt.threads);
+  const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta, threads);
   rep.time.coefficients = now() - t0;
   rep.degenerate_triangles = coef.degenerate_triangles;
   if (coef.degenerate_triangles == static_cast<Index>(mesh.triangles.size()))
@@ -126,8 +127,9 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
                                                in.unwind);
   const SpMatC* Bp = B.rows() ? &B : nullptr;
   std::vector<double> rho;  // empty: s = 0
-  // The surface operator only builds K: freed at once (at 1M triangles it is 180 MB).
-  SpMatC K = assemble_energy(assemble_surface_operator(tp, coef, compute_sigma(coef, rho, 0.0), opt.k, opt.residual), Bp);
+  // K straight into its pattern, without the surface operator A (K = A^H A + B^H B): at 1M
+  // triangles A cost 180 MB and two passes.
+  SpMatC K = assemble_energy(tp, coef, compute_sigma(coef, rho, 0.0, threads), opt.k, opt.residual, Bp, threads);
   rep.time.assembly += now() - t0;
   const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
   const auto split = far_pair_3d(mesh, tp, tp.outer_loop);

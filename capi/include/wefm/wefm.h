@@ -36,9 +36,11 @@
  * Threads.     Distinct handles may be used concurrently from different threads. One handle must not
  *              be used from two threads at once, with one exception: wefm_face_cancel() may be called
  *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
- *              The library starts no threads of its own. The OpenBLAS under CHOLMOD keeps a thread
- *              pool from load time; a solve sets it to wefm_options.threads (0 = 1) threads,
- *              process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether).
+ *              With wefm_options.threads <= 1 the library starts no threads of its own; with more,
+ *              a solve runs its coefficients and assembly on that many short-lived threads (joined
+ *              before it returns; results are bit-identical for any count). The OpenBLAS under
+ *              CHOLMOD keeps a thread pool from load time; a solve sets it to wefm_options.threads
+ *              (0 = 1) threads, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether).
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or
@@ -208,7 +210,7 @@ typedef struct wefm_options {
   int auto_cut;              /**< non-zero: cut annuli and closed genus-0 surfaces without caller seams or
                                   loops automatically (docs/SOLVER.md). Toggling it on a face it cuts is a
                                   topology change. Default 0 */
-  int threads;               /**< threads for the BLAS under CHOLMOD during a solve (0 = 1). Default 0 */
+  int threads;               /**< threads for coefficients, assembly and the BLAS under CHOLMOD during a solve (0 = 1). Default 0 */
   double memory_limit_mb;    /**< refuse solves estimated above this (0 = no limit). Default 0 */
   double min_beta;           /**< altitude/base floor for degenerate triangles (> 0). Default 1e-3 */
   int residual;              /**< wefm_residual. Default WEFM_RESIDUAL_PER_HALF_EDGE */
