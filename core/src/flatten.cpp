@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <tuple>
 
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
@@ -354,11 +355,16 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
 
 FlattenResult flatten(const FlattenInput& in) {
   FlattenResult res = flatten_attempt(in);
-  auto invalid = [](const FlattenResult& r) { return r.report.quality.flips > 0 || r.report.quality.boundary_intersections > 0; };
+  auto valid = [](const FlattenResult& r) { return r.report.quality.flips == 0 && r.report.quality.boundary_intersections == 0; };
+  // A valid layout that the continuation could not carry to the target s (it fell back to a
+  // smaller s) is short of what was asked too: the retries below may reach the target.
+  auto short_of_target = [&](const FlattenResult& r) { return !valid(r) || r.report.s < in.options.s - 1e-12; };
+  // Valid first, then the s reached, then the score.
+  auto rank = [&](const FlattenResult& r) { return std::make_tuple(valid(r) ? 1 : 0, valid(r) ? r.report.s : 0.0, r.report.quality.score); };
   auto try_instead = [&](FlattenInput alt_in, auto mark) {
     try {
       FlattenResult alt = flatten_attempt(alt_in);
-      if (alt.report.quality.score > res.report.quality.score) {
+      if (rank(alt) > rank(res)) {
         mark(alt.report);
         alt.report.time.total += res.report.time.total;
         res = std::move(alt);
@@ -367,9 +373,9 @@ FlattenResult flatten(const FlattenInput& in) {
       if (e.code() == Errc::cancelled) throw;
     }
   };
-  if (in.options.method != Method::Global || !invalid(res)) return res;
-  // A domain with flips or a self-overlapping boundary is unusable for meshing; valid layouts never
-  // take the paths below, so they cost nothing on them.
+  if (in.options.method != Method::Global || !short_of_target(res)) return res;
+  // A domain with flips or a self-overlapping boundary is unusable for meshing; layouts that are
+  // valid at the target s never take the paths below, so they cost nothing on them.
   // 1. Needle and zero-area triangles (tiny altitude/base, huge weights) drive most flips: retry with
   //    a stronger floor on beta. Real sample: the bottle thread face, 4 overlaps -> valid (0.37).
   const double floor = 0.05;
@@ -381,9 +387,10 @@ FlattenResult flatten(const FlattenInput& in) {
   // 2. A face whose low-distortion layout coils over itself (a helical strip: its sides curve one
   //    way for more than a turn) needs its sides straightened: the boundary term, strengthened,
   //    aims gentle turns at a fraction of their 3D value; the least unwinding that gives a valid
-  //    layout wins.
+  //    layout at the target s wins. The bottle's thread face: valid only at s = 0 before
+  //    unwinding (.37), valid at s = 1 with it (.98).
   for (double unwind : {0.5, 0.25, 0.0}) {
-    if (!invalid(res)) break;
+    if (!short_of_target(res)) break;
     FlattenInput alt = in;
     alt.unwind = unwind;
     alt.boundary_weight_override = std::max(10.0, in.options.boundary_weight);
