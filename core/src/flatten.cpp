@@ -283,7 +283,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
     keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
-    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, std::move(K), sub, keep, opt.backend);  // K is not needed after
+    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, std::move(K), sub, keep, opt.backend, opt.min_beta);  // K is not needed after
     // The s = 0 factor becomes the continuation's preconditioner, refactorised in place; with
     // substituted seams the continuation factorises its own pattern: do not hold two factors.
     kkt.release_caches();

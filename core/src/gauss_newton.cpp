@@ -1,9 +1,13 @@
 #include "wefm/core/gauss_newton.hpp"
 
 #include <Eigen/Dense>
+#include <array>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <cstdio>
+#include <cstdlib>
 
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
@@ -35,8 +39,9 @@ void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
 }  // namespace
 
 GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC K,
-                         const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend)
-    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), rows_(std::move(rows)), own_chol_(backend) {
+                         const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta)
+    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), barrier_(tp, c, min_beta), rows_(std::move(rows)),
+      own_chol_(backend) {
   const Index n = tp.use_count;
   K.makeCompressed();
   // H_'s pattern: each entry of K becomes a 2x2 block, written column by column in place (the
@@ -89,6 +94,18 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
 template <class F>
 void GaussNewton::for_each_row(const VectorXc& z, double s, F&& f) const {
   for_each_row_split(z, s, [&](Complex p, Complex q, const Entry* es, int ne) { f(p - q, es, ne); });
+  // The shape barrier is scale-free: it belongs here and not in the split rows that rescale uses.
+  std::array<Complex, 3> l;
+  double r = 0;
+  Entry es[3];
+  for (size_t t = 0; t < barrier_.triangles(); ++t) {
+    const Index a = tp_.corner_use[3 * t], b = tp_.corner_use[3 * t + 1], c = tp_.corner_use[3 * t + 2];
+    if (!barrier_.row(t, z[a], z[b], z[c], r, l)) continue;
+    es[0] = {a, l[0], std::conj(l[0])};
+    es[1] = {b, l[1], std::conj(l[1])};
+    es[2] = {c, l[2], std::conj(l[2])};
+    f(Complex(r, 0), es, 3);
+  }
 }
 
 template <class F>
@@ -378,6 +395,35 @@ Eigen::MatrixXd GaussNewton::precondition(const Eigen::MatrixXd& r) {
   return out;
 }
 
+double GaussNewton::first_flip(const VectorXc& z, const VectorXc& dz) const {
+  // Twice the signed area of a triangle along z + t dz is A0 + A1 t + A2 t^2; for each triangle
+  // positive now, the smallest t > 0 where it vanishes. Triangles already flipped (or flat) are
+  // not held: they may unflip.
+  auto cross = [](Complex a, Complex b) { return a.real() * b.imag() - a.imag() * b.real(); };
+  double t_min = std::numeric_limits<double>::infinity();
+  const size_t nt = tp_.corner_use.size() / 3;
+  for (size_t t = 0; t < nt; ++t) {
+    const Index a = tp_.corner_use[3 * t], b = tp_.corner_use[3 * t + 1], c = tp_.corner_use[3 * t + 2];
+    const Complex p1 = z[b] - z[a], p2 = z[c] - z[a], q1 = dz[b] - dz[a], q2 = dz[c] - dz[a];
+    const double A0 = cross(p1, p2), A1 = cross(p1, q2) + cross(q1, p2), A2 = cross(q1, q2);
+    if (!(A0 > 0)) continue;
+    double root = std::numeric_limits<double>::infinity();
+    if (std::abs(A2) <= 1e-14 * (std::abs(A1) + A0)) {
+      if (A1 < 0) root = -A0 / A1;
+    } else {
+      const double disc = A1 * A1 - 4 * A2 * A0;
+      if (disc >= 0) {
+        // Roots by the stable formula; the smallest positive one.
+        const double qq = -0.5 * (A1 + std::copysign(std::sqrt(disc), A1));
+        for (double r : {qq / A2, qq != 0 ? A0 / qq : std::numeric_limits<double>::infinity()})
+          if (r > 0) root = std::min(root, r);
+      }
+    }
+    t_min = std::min(t_min, root);
+  }
+  return t_min;
+}
+
 double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
   double t0 = now();
   Eigen::VectorXd g;
@@ -437,7 +483,12 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     for (Index k = 0; k < nr / 2; ++k) dy[k] = Complex(delta[2 * k], delta[2 * k + 1]);
     const VectorXc dz = identity_ ? dy : VectorXc(sub_.P * dy);
     const double predicted = -gy.dot(delta);  // first-order decrease (negative)
-    for (double t = 1.0; t >= 1.0 / 64; t *= 0.5) {
+    // Below s = 2 nothing in the energy keeps a triangle from passing through zero area, and a
+    // step that flips triangles lands where Gauss-Newton does not find its way back (sphere with
+    // a small hole at s = 1: the first full step flipped 194 triangles, 50 iterations later 8 were
+    // still flipped). The step is cut short of the first triangle it would flip.
+    const double t_max = std::min(1.0, 0.9 * first_flip(z, dz));
+    for (double t = t_max; t >= t_max / 64; t *= 0.5) {
       const VectorXc zt = z + t * dz;
       const double et = energy(zt, s);
       if (std::isfinite(et) && et <= e0 + 1e-4 * t * predicted) {

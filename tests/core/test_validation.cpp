@@ -14,6 +14,15 @@ Errc code_of(const std::function<void()>& f) {
   return Errc::internal;  // "no error" is a failure in these tests
 }
 
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 TEST_CASE("invalid meshes are rejected with a precise message") {
@@ -81,6 +90,38 @@ TEST_CASE("invalid topologies each return their own error and the face stays usa
     f.add_edge({0, 8});
     f.add_loop({{0, false}, {0, false}});
     CHECK(code_of([&] { f.topology(); }) == Errc::invalid_topology);
+  }
+  // Rings of the 8 x 2 cylinder: bottom 0..7, middle 8..15 (interior), top 16..23; the face lies
+  // left of 0 -> 1 -> ... -> 7 -> 0 and of 23 -> 22 -> ... -> 16 -> 23.
+  const std::vector<Index> bottom = {0, 1, 2, 3, 4, 5, 6, 7, 0}, middle = {8, 9, 10, 11, 12, 13, 14, 15, 8},
+                           top = {23, 22, 21, 20, 19, 18, 17, 16, 23};
+  SUBCASE("loop that does not bound the face") {
+    f.add_edge(middle);
+    f.add_loop({{0, false}});
+    CHECK(code_of([&] { f.topology(); }) == Errc::invalid_topology);
+    CHECK(message_of([&] { f.topology(); }).find("does not bound the face: edge 0 crosses the interior") != std::string::npos);
+  }
+  SUBCASE("two loops on the same boundary") {
+    f.add_edge(bottom);
+    f.add_edge(bottom);
+    f.add_loop({{0, false}});
+    f.add_loop({{1, false}});
+    CHECK(code_of([&] { f.topology(); }) == Errc::invalid_topology);
+    CHECK(message_of([&] { f.topology(); }).find("loops 0 and 1 describe the same boundary") != std::string::npos);
+  }
+  SUBCASE("part of the boundary in no loop") {
+    f.add_edge(bottom);
+    f.add_loop({{0, false}});
+    CHECK(code_of([&] { f.topology(); }) == Errc::invalid_topology);
+    CHECK(message_of([&] { f.topology(); }).find("belongs to no loop") != std::string::npos);
+  }
+  SUBCASE("a loop that runs against the face") {
+    f.add_edge(bottom);
+    f.add_edge(top);
+    f.add_loop({{0, true}});
+    f.add_loop({{1, false}});
+    CHECK(code_of([&] { f.topology(); }) == Errc::invalid_topology);
+    CHECK(message_of([&] { f.topology(); }).find("runs the wrong way along edge 0") != std::string::npos);
   }
   // After any of these, clearing the topology makes the face solvable again (seamless annulus).
   f.clear_topology();

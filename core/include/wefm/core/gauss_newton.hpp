@@ -16,6 +16,7 @@
 #include "wefm/core/options.hpp"
 #include "wefm/core/partitioned_kkt.hpp"
 #include "wefm/core/seam_substitution.hpp"
+#include "wefm/core/shape_barrier.hpp"
 #include "wefm/core/sparse_cholesky.hpp"
 
 namespace wefm {
@@ -39,7 +40,7 @@ class GaussNewton {
   // matrix). rows: constraints over the reduced unknowns that every step must keep (caller rows,
   // cycle closures); they hold at the starting layout.
   GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC K_pattern,
-              const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend);
+              const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta);
 
   // The gauge v = sum_k g_k y_k (a vector between two far uses). For s >= 1 only its direction is
   // held (rotation) and the size is an unknown like any other. Below s = 1 the energy tends to 0 as
@@ -103,6 +104,8 @@ class GaussNewton {
 
  private:
   // One damped step; returns the max relative rho change it made.
+  // The smallest t > 0 at which z + t dz flips a triangle that is positive in z (infinity if none).
+  double first_flip(const VectorXc& z, const VectorXc& dz) const;
   double step(VectorXc& z, double s, double& energy_out);
   bool solve_step(const SpMatR& H, const Eigen::VectorXd& shift, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
                   Eigen::VectorXd& delta);
@@ -119,6 +122,7 @@ class GaussNewton {
   Residual form_;
   std::vector<double> w_;
   const SeamSubstitution& sub_;
+  ShapeBarrier barrier_;
   Eigen::SparseMatrix<Complex, Eigen::RowMajor, int> B_rows_;  // B by rows, for the linearisation
   std::vector<std::vector<size_t>> opposite_;                   // PerUse: half-edges opposite each use
   SpMatR P_real_;
