@@ -210,7 +210,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         std::vector<EdgeMode> md = mode;
         md[static_cast<size_t>(e)] = EdgeMode::Free;
         VectorXc z_free = z;
-        double best = -std::numeric_limits<double>::infinity();
+        // Ranked valid first, then by fewer flips and crossings, then by score: with several
+        // edges, one edge's choice can remove a crossing while another still makes the layout
+        // invalid, and a flat -2 would hide that progress from the descent.
+        using Rank = std::tuple<int, std::int64_t, double>;
+        Rank best{0, std::numeric_limits<std::int64_t>::min(), -std::numeric_limits<double>::infinity()};
         EdgeMode best_mode = mode[static_cast<size_t>(e)];
         VectorXc best_z = z;
         // Periodic first: on ties (a developable cylinder is exact both free and periodic) the
@@ -220,14 +224,19 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
           std::vector<Complex> rot = rotation;
           if (cand == EdgeMode::Rotational) rot[static_cast<size_t>(e)] = estimate_rotation(r, z_free);
           double sc;
+          Rank rank;
           VectorXc zc;
           try {
             zc = kkt.solve(rows_with(md, rot, gauge.vector ? &vec : nullptr), eta_ptr);
             recentre(zc);
+            glue_scars(tp, md, zc);
             sc = score_of(zc);
+            const std::int64_t bad = last_quality.flips + last_quality.boundary_intersections;
+            rank = Rank{bad == 0 ? 1 : 0, -bad, sc};
           } catch (const Error& err) {
             if (err.code() != Errc::singular) throw;
             sc = -std::numeric_limits<double>::infinity();
+            rank = Rank{0, std::numeric_limits<std::int64_t>::min(), sc};
           }
           if (cand == EdgeMode::Free) z_free = zc;
           if (cand == EdgeMode::Periodic) {
@@ -241,8 +250,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
           }
           res.edge_scores[static_cast<size_t>(e)][static_cast<size_t>(cand)] = std::isfinite(sc) ? sc : -3.0;
           // A constrained mode must beat free clearly: constraints are only worth their rigidity.
-          if (sc > best + 1e-9) {
-            best = sc;
+          const bool better = std::get<0>(rank) != std::get<0>(best) || std::get<1>(rank) != std::get<1>(best)
+                                  ? rank > best
+                                  : std::get<2>(rank) > std::get<2>(best) + 1e-9;
+          if (better) {
+            best = rank;
             best_mode = cand;
             best_z = zc;
             if (cand == EdgeMode::Rotational) rotation[static_cast<size_t>(e)] = rot[static_cast<size_t>(e)];
@@ -251,7 +263,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         if (best_mode != mode[static_cast<size_t>(e)]) changed = true;
         mode[static_cast<size_t>(e)] = best_mode;
         z = best_z;
-        current = best;
+        current = std::get<2>(best);
       }
       if (!changed) break;
     }
@@ -331,6 +343,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     scale_to_3d_area(z);
   }
   stage.check(0.95, "quality");
+  glue_scars(tp, mode, z);
   res.uv = z * ls;
   t0 = now();
   rep.quality = evaluate_quality(mesh, tp, res.uv);

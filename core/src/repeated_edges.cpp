@@ -48,4 +48,11 @@ Complex estimate_rotation(const RepeatedEdge& e, const VectorXc& z) {
   return r > 0 ? acc / r : Complex(1, 0);
 }
 
+void glue_scars(const Topology& tp, const std::vector<EdgeMode>& modes, VectorXc& z) {
+  for (const RepeatedEdge& r : tp.repeated) {
+    if (modes[static_cast<size_t>(r.edge)] != EdgeMode::Scar) continue;
+    for (size_t j = 0; j < r.side_a.size(); ++j) z[r.side_b[j]] = z[r.side_a[j]];
+  }
+}
+
 }  // namespace wefm

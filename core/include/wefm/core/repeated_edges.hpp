@@ -11,6 +11,11 @@ namespace wefm {
 // Rotational. Rows that reduce to 0 = 0 (a seam end shared by both sides) are dropped.
 std::vector<LinearRow> repeated_edge_rows(const RepeatedEdge& edge, EdgeMode mode, Complex rotation = {1, 0});
 
+// Puts the two sides of every Scar edge (modes indexed by edge id) at the same point: the
+// constraint holds them together only to rounding, and two copies of one chain a rounding apart
+// cross each other, so a glued scar counted as a boundary self-intersection.
+void glue_scars(const Topology& tp, const std::vector<EdgeMode>& modes, VectorXc& z);
+
 // Best rotation e^{i theta} taking side b's chain onto side a's in layout z (least squares).
 Complex estimate_rotation(const RepeatedEdge& edge, const VectorXc& z);
 
