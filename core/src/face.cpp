@@ -190,7 +190,7 @@ void Face::solve(const ProgressFn& progress, const std::atomic<bool>* cancel) {
     if (!result_->steps.empty()) {
       const StepInfo* bad = &result_->steps.back();
       for (const StepInfo& st : result_->steps)
-        if (st.rho_change >= options_.rho_tolerance) {
+        if (!st.converged) {
           bad = &st;
           break;
         }

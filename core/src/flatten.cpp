@@ -312,6 +312,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       step.s = s_next;
       step.iterations = gr.iterations;
       step.rho_change = gr.rho_change;
+      step.converged = gr.converged;
       rep.rho_iterations += gr.iterations;
       if (!gr.converged) rep.converged = false;
       const std::pair<int, double> rank = rank_of(z, s_next);

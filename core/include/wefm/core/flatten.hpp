@@ -18,6 +18,7 @@ struct StepInfo {
   double s = 0;
   int iterations = 0;
   double rho_change = 0;
+  bool converged = true;  // rho settled or the energy stopped falling (a flat valley), within the cap
 };
 
 struct Timings {
