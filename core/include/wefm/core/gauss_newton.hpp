@@ -73,6 +73,7 @@ class GaussNewton {
   GaussNewtonReport run(VectorXc& z, double s, double tol, int max_it, bool free_scale, Check&& check) {
     GaussNewtonReport rep;
     double e_prev = energy(z, s);
+    double e_window[5] = {e_prev, e_prev, e_prev, e_prev, e_prev};  // energies of the last five iterations
     for (int it = 0; it < max_it; ++it) {
       check(it);
       rep.rho_change = step(z, s, rep.energy);
@@ -86,8 +87,14 @@ class GaussNewton {
       // step. Measured on the sphere with a small hole at s = 1: from iteration 25 on, each step
       // lowers the energy by 1e-8 while the max rho change, held up by two near-collapsed
       // triangles, creeps down by 0.0004 a step.
+      // Or a slow tail: the energy fell by less than 1e-5 of itself per iteration over the last
+      // five. Measured on a Ball.brep sphere face at s = 2: the score moves from .8448 (iteration
+      // 35, where this stops) to .8453 (iteration 98, the 1e-7 rule) while a few triangles near the
+      // poles keep the max rho change at 2-7 %.
       const double decrease = e_prev - rep.energy;
-      const bool stalled = decrease <= 1e-9 * e_prev || (decrease <= 1e-7 * e_prev && lambda_ <= 1e-6);
+      const bool stalled = decrease <= 1e-9 * e_prev || (decrease <= 1e-7 * e_prev && lambda_ <= 1e-6) ||
+                           (it >= 5 && e_window[it % 5] - rep.energy <= 5e-5 * e_window[it % 5]);
+      e_window[it % 5] = rep.energy;
       e_prev = rep.energy;
       if (rep.rho_change < tol || stalled) {
         rep.converged = true;
