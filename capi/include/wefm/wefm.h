@@ -180,7 +180,8 @@ typedef enum wefm_edge_mode {
   WEFM_EDGE_AUTO = 0,      /**< choose by score (METHOD §7 step 2) */
   WEFM_EDGE_FREE = 1,      /**< the two sides are independent */
   WEFM_EDGE_PERIODIC = 2,  /**< the two sides are translates of each other */
-  WEFM_EDGE_SCAR = 3,      /**< the two sides coincide */
+  WEFM_EDGE_SCAR = 3,      /**< the two sides coincide (at one point each: forced on a cylinder's
+                                seam this gives the uncut annulus with the seam as an interior line) */
   WEFM_EDGE_ROTATIONAL = 4 /**< the two sides are related by a rotation about a free centre */
 } wefm_edge_mode;
 
