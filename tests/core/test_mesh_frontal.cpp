@@ -1,0 +1,164 @@
+// Frontal-Delaunay free meshing (frontal.hpp, size_field.hpp): quality on simple faces, the
+// boundary left alone, grading from short boundary segments, a valid triangulation throughout.
+#include "mesh_faces.hpp"
+#include "wefm/core/meshing/frontal.hpp"
+
+using namespace wefm;
+using meshing::P2;
+
+namespace {
+
+double mean_edge(const meshing::DomainMesh& dm) {
+  double s = 0;
+  for (size_t e = 0; e < dm.elements.size(); e += 3)
+    for (size_t k = 0; k < 3; ++k) s += (dm.xyz[static_cast<size_t>(dm.elements[e + k])] - dm.xyz[static_cast<size_t>(dm.elements[e + (k + 1) % 3])]).norm();
+  return s / static_cast<double>(dm.elements.size());
+}
+
+// Every UV element counter-clockwise, and the boundary nodes exactly the loop discretisation.
+void check_domain_mesh(const test::SolvedFace& f, const meshing::MeshOptions& o, const meshing::DomainMesh& dm,
+                       const meshing::EdgeNodes& given = {}) {
+  for (size_t e = 0; e < dm.elements.size(); e += 3)
+    CHECK(meshing::orient2d(dm.uv[static_cast<size_t>(dm.elements[e])], dm.uv[static_cast<size_t>(dm.elements[e + 1])],
+                            dm.uv[static_cast<size_t>(dm.elements[e + 2])]) > 0);
+  const auto loops = meshing::discretise_loops(f.mesh(), f.topo(), f.uv(), o.size, o.corner_angle_deg * kPi / 180.0, given);
+  size_t k = 0;
+  for (const auto& l : loops)
+    for (size_t j = 0; j < l.uv.size(); ++j, ++k) {
+      REQUIRE(k < static_cast<size_t>(dm.boundary_nodes));
+      CHECK(dm.uv[k] == l.uv[j]);
+      CHECK(dm.xyz[k] == l.xyz[j]);
+    }
+  CHECK(k == static_cast<size_t>(dm.boundary_nodes));
+  CHECK(dm.report.outside_nodes == 0);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+}
+
+}  // namespace
+
+TEST_CASE("frontal free meshing of a flat square: near-equilateral elements of size h, boundary untouched") {
+  const auto f = test::solved(test::unit_square(8));
+  meshing::MeshOptions o;
+  o.size = 0.05;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("square: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  CHECK(dm.report.lambda_mesh >= 0.985);
+  CHECK(dm.report.lambda_min >= 0.75);
+  // Equilateral triangles of side h tile the unit square in 4 / (sqrt(3) h^2) of them.
+  CHECK(static_cast<double>(dm.report.elements) == doctest::Approx(4 / (std::sqrt(3.0) * o.size * o.size)).epsilon(0.1));
+  CHECK(mean_edge(dm) == doctest::Approx(o.size).epsilon(0.1));
+  check_domain_mesh(f, o, dm);
+}
+
+TEST_CASE("frontal free meshing of a half cylinder: the size and shape hold in 3D") {
+  const auto f = test::solved(test::cut_cylinder(24, 12, 1.0, 2.0, kPi), 1.0);
+  meshing::MeshOptions o;
+  o.size = 0.1;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("half cylinder: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  CHECK(dm.report.lambda_mesh >= 0.985);
+  CHECK(dm.report.lambda_min >= 0.75);
+  CHECK(mean_edge(dm) == doctest::Approx(o.size).epsilon(0.1));
+  check_domain_mesh(f, o, dm);
+}
+
+TEST_CASE("frontal free meshing of a curved face whose domain scale varies: sizes measured in 3D") {
+  // A spherical rectangle: its flattening stretches the domain, so UV sizes differ from 3D ones.
+  const auto f = test::solved(test::hemisphere(24, 12), 1.0);
+  meshing::MeshOptions o;
+  o.size = 0.08;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("spherical rectangle: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  CHECK(dm.report.lambda_mesh >= 0.98);
+  CHECK(dm.report.lambda_min >= 0.75);
+  CHECK(mean_edge(dm) == doctest::Approx(o.size).epsilon(0.1));
+  check_domain_mesh(f, o, dm);
+}
+
+TEST_CASE("a side discretised at h/4 grades the inside down to it instead of standing h-sized elements on it") {
+  const auto f = test::solved(test::unit_square(8));
+  REQUIRE(f.topo().edges.size() == 1);
+  // The square's one edge: the side y = 0 at h/4, the three others at h (nodes in loop order).
+  meshing::EdgeNodes given;
+  const double h = 0.1;
+  auto& nodes = given[0];
+  for (int k = 1; k < 40; ++k) nodes.emplace_back(k / 40.0, 0, 0);
+  for (int k = 0; k < 10; ++k) nodes.emplace_back(1, k / 10.0, 0);
+  for (int k = 0; k < 10; ++k) nodes.emplace_back(1 - k / 10.0, 1, 0);
+  for (int k = 0; k < 10; ++k) nodes.emplace_back(0, 1 - k / 10.0, 0);
+  meshing::MeshOptions o;
+  o.size = h;
+  const auto dm = f.mesh_domain(o, given);
+  MESSAGE("graded square: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  CHECK(dm.report.lambda_min >= 0.5);
+  CHECK(dm.report.lambda_mesh >= 0.94);
+  // Elements next to the fine side are near its spacing; far from it, near h.
+  double near = 0, far = 0;
+  int n_near = 0, n_far = 0;
+  for (size_t e = 0; e < dm.elements.size(); e += 3) {
+    const Vec3 &a = dm.xyz[static_cast<size_t>(dm.elements[e])], &b = dm.xyz[static_cast<size_t>(dm.elements[e + 1])],
+               &c = dm.xyz[static_cast<size_t>(dm.elements[e + 2])];
+    const double y = (a.y() + b.y() + c.y()) / 3, l = ((a - b).norm() + (b - c).norm() + (c - a).norm()) / 3;
+    if (y < 0.03) near += l, ++n_near;
+    if (y > 0.7) far += l, ++n_far;
+  }
+  REQUIRE(n_near > 0);
+  REQUIRE(n_far > 0);
+  CHECK(near / n_near < 0.45 * h);
+  CHECK(far / n_far == doctest::Approx(h).epsilon(0.15));
+  check_domain_mesh(f, o, dm, given);
+}
+
+TEST_CASE("the size field is h away from short segments and grows from them at the gradation") {
+  meshing::LoopNodes l;
+  // A square of side 1 with one side cut into 10 segments of 0.1 and the others single segments.
+  for (int k = 0; k < 10; ++k) l.xyz.emplace_back(k / 10.0, 0, 0);
+  l.xyz.emplace_back(1, 0, 0), l.xyz.emplace_back(1, 1, 0), l.xyz.emplace_back(0, 1, 0);
+  l.uv.resize(l.xyz.size(), P2::Zero());
+  const meshing::SizeField field({l}, 0.5, 0.3);
+  CHECK(field.at(Vec3(0.55, 0, 0)) == doctest::Approx(0.1));
+  CHECK(field.at(Vec3(0.55, 0.5, 0)) == doctest::Approx(0.1 + 0.3 * 0.5));
+  CHECK(field.at(Vec3(0.5, 2, 0)) == doctest::Approx(0.5));
+  CHECK(field.at(Vec3(1e3, 0, 0)) == doctest::Approx(0.5));
+  // No segment below h: h everywhere.
+  const meshing::SizeField flat({l}, 0.05, 0.3);
+  CHECK(flat.at(Vec3(0.5, 0.5, 0)) == 0.05);
+}
+
+TEST_CASE("frontal refinement leaves a valid constrained Delaunay triangulation, all of it at the size") {
+  const auto f = test::solved(test::flat_patch(12));
+  const double h = 0.08;
+  const auto loops = meshing::discretise_loops(f.mesh(), f.topo(), f.uv(), h, kPi / 6, {});
+  std::vector<P2> pts;
+  std::vector<Vec3> xyz;
+  std::vector<std::array<Index, 2>> segs;
+  for (const auto& l : loops) {
+    const Index base = static_cast<Index>(pts.size()), n = static_cast<Index>(l.uv.size());
+    for (Index k = 0; k < n; ++k) pts.push_back(l.uv[static_cast<size_t>(k)]), xyz.push_back(l.xyz[static_cast<size_t>(k)]), segs.push_back({base + k, base + (k + 1) % n});
+  }
+  meshing::Triangulation tr(pts, segs);
+  const meshing::SurfaceMap map(f.mesh(), f.topo(), f.uv());
+  const meshing::SizeField field(loops, h, 0.3);
+  std::vector<double> sizes(xyz.size());
+  for (size_t k = 0; k < xyz.size(); ++k) sizes[k] = field.at(xyz[k]);
+  int ticks = 0;
+  const std::int64_t added = meshing::frontal_refine(tr, xyz, sizes, map, field, {}, [&] { ++ticks; });
+  CHECK(added > 100);
+  CHECK(ticks == added);
+  CHECK(tr.valid());
+  CHECK(xyz.size() == static_cast<size_t>(tr.node_count()));
+  int large = 0;
+  const auto tris = tr.triangles();
+  for (const auto& t : tris)
+    large += meshing::size_ratio(xyz[static_cast<size_t>(t[0])], xyz[static_cast<size_t>(t[1])], xyz[static_cast<size_t>(t[2])], h) >= 1.3;
+  CHECK(large <= static_cast<int>(tris.size()) / 100);
+  // The node cap is honoured.
+  meshing::Triangulation capped(pts, segs);
+  std::vector<Vec3> xyz2(xyz.begin(), xyz.begin() + static_cast<long>(pts.size()));
+  std::vector<double> sizes2(sizes.begin(), sizes.begin() + static_cast<long>(pts.size()));
+  meshing::FrontalSettings s;
+  s.max_nodes = static_cast<std::int64_t>(pts.size()) + 20;
+  meshing::frontal_refine(capped, xyz2, sizes2, map, field, s, [] {});
+  CHECK(capped.node_count() == s.max_nodes);
+  CHECK(capped.valid());
+}
