@@ -244,8 +244,14 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   if (args.has("size-ratio")) size *= model.bbox_diagonal;
   const auto t_edges = Clock::now();
   std::vector<double> face_sizes(model.faces.size(), size);
-  if (!args.has("no-local-size")) face_sizes = wefm_cad::local_face_sizes(model, size);
-  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes);
+  // Edges grade towards short neighbours at the rate (0.3 per unit length) the library grades a
+  // face's inside from its short boundary segments, so the two meet without a jump.
+  double gradation = 0;
+  if (!args.has("no-local-size")) {
+    face_sizes = wefm_cad::local_face_sizes(model, size);
+    gradation = 0.3;
+  }
+  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
   const double time_edges = since(t_edges);
 
   wefm_mesh_options free_options, tf_options;
