@@ -2,6 +2,8 @@
 // boundary left alone, grading from short boundary segments, a valid triangulation throughout.
 #include "mesh_faces.hpp"
 #include "wefm/core/meshing/frontal.hpp"
+#include "wefm/core/meshing/mesh_quality.hpp"
+#include "wefm/core/meshing/node_optimisation.hpp"
 
 using namespace wefm;
 using meshing::P2;
@@ -91,7 +93,7 @@ TEST_CASE("a side discretised at h/4 grades the inside down to it instead of sta
   const auto dm = f.mesh_domain(o, given);
   MESSAGE("graded square: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
   CHECK(dm.report.lambda_min >= 0.5);
-  CHECK(dm.report.lambda_mesh >= 0.94);
+  CHECK(dm.report.lambda_mesh >= 0.95);
   // Elements next to the fine side are near its spacing; far from it, near h.
   double near = 0, far = 0;
   int n_near = 0, n_far = 0;
@@ -161,4 +163,49 @@ TEST_CASE("frontal refinement leaves a valid constrained Delaunay triangulation,
   meshing::frontal_refine(capped, xyz2, sizes2, map, field, s, [] {});
   CHECK(capped.node_count() == s.max_nodes);
   CHECK(capped.valid());
+}
+
+TEST_CASE("node optimisation raises the sum of log lambda, keeps the boundary and never inverts an element") {
+  const auto f = test::solved(test::saddle(16), 1.0);
+  meshing::MeshOptions o;
+  o.size = 0.15;
+  o.smoothing_iterations = 0;
+  meshing::DomainMesh dm = f.mesh_domain(o);
+  const meshing::SurfaceMap map(f.mesh(), f.topo(), f.uv());
+  // Shake the interior nodes by a tenth of h (deterministically), staying inside their stars.
+  std::vector<std::array<Index, 3>> tris;
+  for (size_t e = 0; e < dm.elements.size(); e += 3) tris.push_back({dm.elements[e], dm.elements[e + 1], dm.elements[e + 2]});
+  auto valid = [&] {
+    for (const auto& t : tris)
+      if (!(meshing::orient2d(dm.uv[static_cast<size_t>(t[0])], dm.uv[static_cast<size_t>(t[1])], dm.uv[static_cast<size_t>(t[2])]) > 0)) return false;
+    return true;
+  };
+  for (Index v = dm.boundary_nodes; v < static_cast<Index>(dm.uv.size()); ++v) {
+    const P2 keep = dm.uv[static_cast<size_t>(v)];
+    const double a = 2.399963 * v;  // golden angle steps
+    dm.uv[static_cast<size_t>(v)] += 0.01 * P2(std::cos(a), std::sin(a));
+    Vec3 x;
+    if (!valid() || !map.lift(dm.uv[static_cast<size_t>(v)], x)) dm.uv[static_cast<size_t>(v)] = keep;
+    map.lift(dm.uv[static_cast<size_t>(v)], dm.xyz[static_cast<size_t>(v)]);
+  }
+  REQUIRE(valid());
+  auto stats = [&](double& sum, double& worst) {
+    sum = 0, worst = 1;
+    for (const auto& t : tris) {
+      const double l = meshing::lo_lambda(dm.xyz[static_cast<size_t>(t[0])], dm.xyz[static_cast<size_t>(t[1])], dm.xyz[static_cast<size_t>(t[2])]);
+      sum += std::log(l), worst = std::min(worst, l);
+    }
+  };
+  double sum0, worst0, sum1, worst1;
+  stats(sum0, worst0);
+  const std::vector<P2> boundary(dm.uv.begin(), dm.uv.begin() + dm.boundary_nodes);
+  const std::int64_t moves = meshing::optimise_nodes(dm.uv, dm.xyz, tris, dm.boundary_nodes, map, 0.8);
+  stats(sum1, worst1);
+  MESSAGE("moves ", moves, ": lambda_mesh ", std::exp(sum0 / tris.size()), " -> ", std::exp(sum1 / tris.size()), ", min ", worst0, " -> ", worst1);
+  CHECK(moves > 0);
+  CHECK(sum1 > sum0);
+  CHECK(worst1 >= std::min(worst0, 0.8) - 1e-12);
+  CHECK(valid());
+  for (size_t k = 0; k < boundary.size(); ++k) CHECK(dm.uv[k] == boundary[k]);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
 }
