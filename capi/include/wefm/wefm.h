@@ -609,7 +609,7 @@ typedef struct wefm_domain_mesh wefm_domain_mesh;
 
 /** wefm_mesh_options.type. */
 typedef enum wefm_mesh_type {
-  WEFM_MESH_FREE = 0,        /**< constrained Delaunay + refinement, triangles */
+  WEFM_MESH_FREE = 0,        /**< frontal-Delaunay triangles sized in 3D, then smoothing and optimisation */
   WEFM_MESH_TRANSFINITE = 1  /**< Coons patch on four corners, quads (or split triangles) */
 } wefm_mesh_type;
 
@@ -622,7 +622,7 @@ typedef struct wefm_mesh_options {
   int quads;                 /**< transfinite: non-zero writes quads, zero splits each into two triangles. Default 1 */
   int smoothing_iterations;  /**< free meshes: UV smoothing passes accepted only if 3D quality improves. Default 5 */
   double corner_angle_deg;   /**< loop vertices turning more than this are kept as nodes. Default 30 */
-  double min_angle_deg;      /**< Delaunay refinement angle bound in UV. Default 28 */
+  double min_angle_deg;      /**< angle bound in UV of the circumcentre refinement after the front. Default 28 */
   int64_t max_elements;      /**< refuse to exceed this many elements (0 = no cap). Default 0 */
 } wefm_mesh_options;
 

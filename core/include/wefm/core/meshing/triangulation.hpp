@@ -1,8 +1,9 @@
 #pragma once
 // Constrained Delaunay triangulation of a UV domain (METHOD §9.2, free meshing): incremental
 // Bowyer-Watson insertion inside a super-triangle, segments recovered by edge flips (Sloan), the
-// outside and the holes removed by parity across the segments, then Delaunay refinement. All
-// topological decisions go through the robust predicates.
+// outside and the holes removed by parity across the segments; then insertion by a refinement
+// strategy (frontal.cpp, or the circumcentre refinement here). All topological decisions go
+// through the robust predicates.
 #include <array>
 #include <cstdint>
 #include <functional>
