@@ -2,6 +2,7 @@
 // boundary left alone, grading from short boundary segments, a valid triangulation throughout.
 #include "mesh_faces.hpp"
 #include "wefm/core/meshing/frontal.hpp"
+#include "wefm/core/meshing/graded_spacing.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
 #include "wefm/core/meshing/node_optimisation.hpp"
 
@@ -23,7 +24,8 @@ void check_domain_mesh(const test::SolvedFace& f, const meshing::MeshOptions& o,
   for (size_t e = 0; e < dm.elements.size(); e += 3)
     CHECK(meshing::orient2d(dm.uv[static_cast<size_t>(dm.elements[e])], dm.uv[static_cast<size_t>(dm.elements[e + 1])],
                             dm.uv[static_cast<size_t>(dm.elements[e + 2])]) > 0);
-  const auto loops = meshing::discretise_loops(f.mesh(), f.topo(), f.uv(), o.size, o.corner_angle_deg * kPi / 180.0, given);
+  const auto loops = meshing::discretise_loops(f.mesh(), f.topo(), f.uv(), o.size, o.corner_angle_deg * kPi / 180.0, given,
+                                               meshing::kSizeGradation);
   size_t k = 0;
   for (const auto& l : loops)
     for (size_t j = 0; j < l.uv.size(); ++j, ++k) {
@@ -208,4 +210,43 @@ TEST_CASE("node optimisation raises the sum of log lambda, keeps the boundary an
   CHECK(valid());
   for (size_t k = 0; k < boundary.size(); ++k) CHECK(dm.uv[k] == boundary[k]);
   CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+}
+
+TEST_CASE("graded spacing: uniform away from short ends, shrinking to them, the same from either end") {
+  const auto uniform = meshing::graded_spacing(1.0, 0.1, 0.2, 0.2, 0.3, 1);
+  REQUIRE(uniform.size() == 10);
+  for (size_t k = 0; k < uniform.size(); ++k) CHECK(uniform[k] == doctest::Approx(0.1 * static_cast<double>(k)));
+  const auto g = meshing::graded_spacing(1.0, 0.1, 0.02, 0.1, 0.3, 1);
+  REQUIRE(g.size() > 10);
+  CHECK(g[1] == doctest::Approx(0.02).epsilon(0.3));
+  for (size_t k = 1; k < g.size(); ++k) {
+    const double seg = g[k] - g[k - 1], next = (k + 1 < g.size() ? g[k + 1] : 1.0) - g[k];
+    CHECK(seg > 0);
+    CHECK(next / seg <= 1.45);
+    CHECK(next <= 0.1 * 1.05);
+  }
+  // Reversed ends: the mirror image.
+  const auto r = meshing::graded_spacing(1.0, 0.1, 0.1, 0.02, 0.3, 1);
+  REQUIRE(r.size() == g.size());
+  for (size_t k = 1; k < g.size(); ++k) CHECK(1.0 - r[g.size() - k] == doctest::Approx(g[k]).epsilon(1e-9));
+  CHECK(meshing::graded_spacing(1.0, 0.1, 0.02, 0.1, 0.3, 40).size() == 40);  // the count floor
+}
+
+TEST_CASE("a short boundary piece: the long pieces next to it grade down to it") {
+  // A quadrilateral (0,0) (1,0) (1,1) (0,0.05): its left side is h/2 long at h = 0.1.
+  const auto f = test::solved(test::grid(20, 20, [](double u, double v) { return Vec3(u, v * (0.05 + 0.95 * u), 0.0); }));
+  meshing::MeshOptions o;
+  o.size = 0.1;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("short side: ", dm.report.elements, " triangles, lambda_mesh ", dm.report.lambda_mesh, ", min ", dm.report.lambda_min);
+  // Uniform pieces: 0.69 (an h-long segment at the short side's corner).
+  CHECK(dm.report.lambda_min >= 0.75);
+  CHECK(dm.report.lambda_mesh >= 0.95);
+  // The boundary segments that end at the short side's corners are near its length, not h.
+  for (Index k = 0; k < dm.boundary_nodes; ++k) {
+    const Vec3& a = dm.xyz[static_cast<size_t>(k)];
+    const Vec3& b = dm.xyz[static_cast<size_t>((k + 1) % dm.boundary_nodes)];
+    if (std::min(a.x(), b.x()) == 0 && std::max(a.x(), b.x()) > 0) CHECK((a - b).norm() < 0.08);
+  }
+  check_domain_mesh(f, o, dm);
 }

@@ -16,9 +16,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Size growth per unit distance away from boundary segments shorter than h (SizeField).
-// Measured on the CAD sample: 0.2 drops Ball's min lambda to 0.48, 0.4 lowers its lambda_mesh.
-constexpr double kGradation = 0.3;
 // Triangles the front left with sqrt(3) circumradius / size above this get their circumcentre.
 constexpr double kRefineRatio = 1.6;
 
@@ -42,7 +39,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   }
   out.boundary_nodes = static_cast<Index>(pts.size());
   Triangulation tr(pts, segs);
-  const SizeField field(loops, o.size, kGradation);
+  const SizeField field(loops, o.size, kSizeGradation);
   std::vector<double> node_size(out.xyz.size());
   for (size_t k = 0; k < out.xyz.size(); ++k) node_size[k] = field.at(out.xyz[k]);
   std::int64_t inserted = 0;
