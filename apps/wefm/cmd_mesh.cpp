@@ -29,7 +29,7 @@ std::vector<OptionSpec> mesh_specs() {
       {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
        false},
       {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
-      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves", "5", false},
+      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves, then up to 3 optimisation passes (0: neither)", "5", false},
       {"min-angle", 0, "DEG", "free: UV angle bound of the circumcentre refinement after the front", "28", false},
       {"corner-angle", 0, "DEG", "loop vertices turning more than this stay boundary nodes", "30", false},
       {"max-elements", 0, "N", "fail rather than exceed this many elements (0 = no cap)", "0", false},

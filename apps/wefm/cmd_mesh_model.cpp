@@ -57,7 +57,7 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
-      {"smoothing", 0, "N", "UV smoothing passes of free meshes", smooth, false},
+      {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
       {"quiet", 'q', "", "no per-face progress lines", "", false},
   };
