@@ -8,7 +8,8 @@
 #
 # Environment: CAD_DIR (default /work/shared/data/cad), OUT (per-model outputs, default
 # BUILD_DIR/cad_results), JOBS (default 2), ATLAS_MODEL (model whose atlas goes to
-# docs/cad_atlas_<model>.svg, default Ball), CAD_FAILURES (if set, the input OBJ + topo.json of every
+# docs/cad_atlas_<model>.svg, default Ball), REPEAT (runs per command in the Gmsh comparison, whose
+# times are the minimum; default 5), CAD_FAILURES (if set, the input OBJ + topo.json of every
 # face that is not clean are copied there as <model>_fNNN.obj / .topo.json, to reproduce them with
 # `wefm flatten X.obj --topology X.topo.json`).
 set -euo pipefail
@@ -50,7 +51,7 @@ if command -v "${GMSH:-gmsh}" >/dev/null 2>&1; then
     [ -e "$model" ] && models+=("$model")
   done
   python3 "$ROOT/bench/compare_gmsh.py" "$WEFM" "$OUT/gmsh" "${models[@]}" --jobs "$JOBS" --gmsh "${GMSH:-gmsh}" \
-    --markdown >"$OUT/compare_gmsh.md"
+    --repeat "${REPEAT:-5}" --markdown >"$OUT/compare_gmsh.md"
   echo "gmsh comparison: $OUT/compare_gmsh.md"
 fi
 
@@ -135,8 +136,9 @@ for name in names:
 if mesh_rows:
     lines += ["### Whole-model meshes (`wefm mesh-model`)", "",
               "`wefm mesh-model MODEL --size-ratio 0.025 -o MODEL.msh -j 2`: every model edge discretised once at",
-              "h = 1/40 of the bounding-box diagonal (faces narrower than h at their width, at least h/4: the local size",
-              "of apps/README.md), each face flattened, meshed free in its domain and mapped back,",
+              "h = 1/40 of the bounding-box diagonal (faces narrower than h at their width, at least h/4, and edges",
+              "graded towards shorter neighbours: the local size of apps/README.md), each face flattened, meshed free",
+              "in its domain (frontal-Delaunay at the 3D size, graded from short boundary segments) and mapped back,",
               "the face meshes welded on their shared edge nodes. Lo's lambda on the 3D triangles; `open` = edges used",
               "by one triangle, `non-manifold` = by more than two (a closed solid must have 0 and 0). Faces listed",
               "as not ok were still meshed from the flattener's best layout (`not_converged`).", "",
@@ -150,8 +152,9 @@ if os.path.exists(cmp) and os.path.getsize(cmp) > 0:
     lines += ["### Side by side with Gmsh", "",
               "`bench/compare_gmsh.py`: `wefm mesh-model --size-ratio 0.025` against `gmsh MODEL -2 -clmax h -format msh41`",
               f"(Gmsh {(gv.stdout or gv.stderr).strip()}, OCC kernel, default Frontal-Delaunay and thread settings) at the same h. Both",
-              "meshes are read back from their MSH files and measured by the same code; times are wall times of each",
-              "whole command (read, tessellate or import, mesh, write) on this machine.", ""]
+              "meshes are read back from their MSH files and measured by the same code; times are the wall and CPU",
+              "(user + sys) times of each whole command (read, tessellate or import, mesh, write) on this shared",
+              "2-core machine, the smallest of `REPEAT` runs (default 5).", ""]
     lines += open(cmp).read().rstrip("\n").split("\n") + [""]
 clean = sum(1 for _, f in overall if f["status"] == "ok" and not f["flipped_triangles"] and not f["boundary_intersections"])
 lines += [f"All models: {len(overall)} faces, {clean} clean, "

@@ -1,7 +1,9 @@
 #include "cad_edge_nodes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <unordered_map>
 
 namespace wefm_cad {
 
@@ -11,19 +13,67 @@ double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
-EdgeNodes resample(const CadFace& face, const CadEdge& edge, double h) {
+// Arc-length size along an edge of length L: h inside, growing by `g` per unit length from the
+// segment sizes s0 and s1 wanted at its two ends, min(h, s0 + g s, s1 + g (L - s)). Nodes sit at
+// equal steps of the integral of 1 / size, which is closed-form on each linear piece.
+class GradedSize {
+ public:
+  GradedSize(double length, double h, double s0, double s1, double g) : L_(length) {
+    std::vector<double> cuts{0.0, length};
+    if (g > 0) {
+      for (double c : {(h - s0) / g, length - (h - s1) / g, (s1 - s0 + g * length) / (2 * g)})
+        if (c > 0 && c < length) cuts.push_back(c);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    double phi = 0;
+    for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double a = cuts[k], b = cuts[k + 1];
+      if (!(b > a)) continue;
+      const double mid = 0.5 * (a + b);
+      // The piece that is the minimum on [a, b]: size = c0 + c1 (s - a).
+      Piece p{a, b, phi, h, 0.0};
+      if (g > 0 && s0 + g * mid < p.c0) p.c0 = s0 + g * a, p.c1 = g;
+      if (g > 0 && s1 + g * (length - mid) < p.c0 + p.c1 * (mid - a)) p.c0 = s1 + g * (length - a), p.c1 = -g;
+      phi += p.integral(b);
+      pieces_.push_back(p);
+    }
+    total_ = phi;
+  }
+  double total() const { return total_; }  // the integral of 1 / size over the edge
+  // Arc length at which the integral reaches `phi`.
+  double inverse(double phi) const {
+    for (const Piece& p : pieces_) {
+      const double span = p.integral(p.b);
+      if (phi <= p.phi0 + span || &p == &pieces_.back()) {
+        const double t = std::clamp(phi - p.phi0, 0.0, span);
+        const double s = p.c1 == 0 ? p.a + p.c0 * t : p.a + p.c0 * (std::exp(p.c1 * t) - 1) / p.c1;
+        return std::clamp(s, p.a, p.b);
+      }
+    }
+    return L_;
+  }
+
+ private:
+  struct Piece {
+    double a, b, phi0, c0, c1;
+    double integral(double s) const { return c1 == 0 ? (s - a) / c0 : std::log((c0 + c1 * (s - a)) / c0) / c1; }
+  };
+  double L_, total_ = 0;
+  std::vector<Piece> pieces_;
+};
+
+// Nodes at the given arc lengths (sorted, first 0, last the full length) along the edge's chain.
+EdgeNodes place(const CadFace& face, const CadEdge& edge, const std::vector<double>& targets) {
   const size_t m = edge.vertices.size();
   std::vector<const double*> p(m);
   for (size_t i = 0; i < m; ++i) p[i] = &face.xyz[3 * static_cast<size_t>(edge.vertices[i])];
   std::vector<double> s(m, 0.0);  // arc length at each chain vertex
   for (size_t i = 1; i < m; ++i) s[i] = s[i - 1] + distance(p[i - 1], p[i]);
-  const bool closed = edge.vertices.front() == edge.vertices.back();
-  const long long n = std::max<long long>(closed ? 3 : 1, std::llround(s.back() / h));
   EdgeNodes out;
   out.xyz.insert(out.xyz.end(), p[0], p[0] + 3);
   size_t seg = 1;
-  for (long long k = 1; k < n; ++k) {
-    const double target = s.back() * static_cast<double>(k) / static_cast<double>(n);
+  for (size_t k = 1; k + 1 < targets.size(); ++k) {
+    const double target = targets[k];
     while (seg + 1 < m && s[seg] < target) ++seg;
     const double len = s[seg] - s[seg - 1];
     const double t = len > 0 ? std::clamp((target - s[seg - 1]) / len, 0.0, 1.0) : 0.0;
@@ -32,6 +82,42 @@ EdgeNodes resample(const CadFace& face, const CadEdge& edge, double h) {
   out.xyz.insert(out.xyz.end(), p[m - 1], p[m - 1] + 3);
   return out;
 }
+
+long long uniform_count(double length, double h, bool closed) { return std::max<long long>(closed ? 3 : 1, std::llround(length / h)); }
+
+// Model vertices as the chain ends that coincide (within `tol`), numbered in order of appearance;
+// a hash of grid cells of side `tol` finds the candidates.
+class VertexIds {
+ public:
+  explicit VertexIds(double tol) : tol_(tol > 0 ? tol : 1e-300) {}
+  int of(const double* p) {
+    long long c[3];
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<long long>(std::floor(p[k] / tol_));
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto range = cells_.equal_range(key(c[0] + dx, c[1] + dy, c[2] + dz));
+          for (auto it = range.first; it != range.second; ++it) {
+            const auto& q = pts_[static_cast<size_t>(it->second)];
+            if (std::fabs(q[0] - p[0]) <= tol_ && std::fabs(q[1] - p[1]) <= tol_ && std::fabs(q[2] - p[2]) <= tol_) return it->second;
+          }
+        }
+    pts_.push_back({p[0], p[1], p[2]});
+    const int id = static_cast<int>(pts_.size()) - 1;
+    cells_.emplace(key(c[0], c[1], c[2]), id);
+    return id;
+  }
+  size_t size() const { return pts_.size(); }
+
+ private:
+  static unsigned long long key(long long i, long long j, long long k) {
+    return static_cast<unsigned long long>(i) * 73856093ULL ^ static_cast<unsigned long long>(j) * 19349663ULL ^
+           static_cast<unsigned long long>(k) * 83492791ULL;
+  }
+  double tol_;
+  std::vector<std::array<double, 3>> pts_;
+  std::unordered_multimap<unsigned long long, int> cells_;
+};
 
 }  // namespace
 
@@ -64,7 +150,8 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
   return sizes;
 }
 
-std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h, const std::vector<double>& face_sizes) {
+std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h, const std::vector<double>& face_sizes,
+                                                      double gradation) {
   std::map<long long, double> edge_size;
   for (size_t k = 0; k < model.faces.size(); ++k) {
     const double hf = k < face_sizes.size() ? face_sizes[k] : h;
@@ -73,11 +160,44 @@ std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, dou
       if (!fresh) it->second = std::min(it->second, hf);
     }
   }
-  std::map<long long, EdgeNodes> nodes;
+  // Each edge once, from the first face that has it.
+  struct Chain {
+    const CadFace* face;
+    const CadEdge* edge;
+    double length, size;
+    bool closed;
+    int v0, v1;
+  };
+  std::map<long long, Chain> chains;
+  VertexIds vertices(1e-7 * model.bbox_diagonal);
   for (const CadFace& f : model.faces) {
     if (!f.error.empty()) continue;
-    for (const CadEdge& e : f.edges)
-      if (!e.degenerated && e.vertices.size() >= 2 && !nodes.count(e.id)) nodes.emplace(e.id, resample(f, e, edge_size.at(e.id)));
+    for (const CadEdge& e : f.edges) {
+      if (e.degenerated || e.vertices.size() < 2 || chains.count(e.id)) continue;
+      const int v0 = vertices.of(&f.xyz[3 * static_cast<size_t>(e.vertices.front())]);
+      const int v1 = vertices.of(&f.xyz[3 * static_cast<size_t>(e.vertices.back())]);
+      chains.emplace(e.id, Chain{&f, &e, chain_length(f, e), edge_size.at(e.id), e.vertices.front() == e.vertices.back(), v0, v1});
+    }
+  }
+  // At each model vertex, the shortest uniform segment of the edges meeting there: every edge
+  // grades down to it, so a short edge does not end next to a segment many times its length.
+  std::vector<double> vertex_size(vertices.size(), 1e300);
+  for (const auto& [id, c] : chains) {
+    const double u = c.length / static_cast<double>(uniform_count(c.length, c.size, c.closed));
+    for (int v : {c.v0, c.v1}) vertex_size[static_cast<size_t>(v)] = std::min(vertex_size[static_cast<size_t>(v)], u);
+  }
+  std::map<long long, EdgeNodes> nodes;
+  for (const auto& [id, c] : chains) {
+    std::vector<double> targets;
+    if (gradation > 0) {
+      const GradedSize sz(c.length, c.size, vertex_size[static_cast<size_t>(c.v0)], vertex_size[static_cast<size_t>(c.v1)], gradation);
+      const long long n = std::max<long long>(c.closed ? 3 : 1, std::llround(sz.total()));
+      for (long long k = 0; k <= n; ++k) targets.push_back(sz.inverse(sz.total() * static_cast<double>(k) / static_cast<double>(n)));
+    } else {
+      const long long n = uniform_count(c.length, c.size, c.closed);
+      for (long long k = 0; k <= n; ++k) targets.push_back(c.length * static_cast<double>(k) / static_cast<double>(n));
+    }
+    nodes.emplace(id, place(*c.face, *c.edge, targets));
   }
   return nodes;
 }

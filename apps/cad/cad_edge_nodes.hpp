@@ -25,8 +25,10 @@ std::vector<double> local_face_sizes(const CadModel& model, double h);
 
 // Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
-// empty for h everywhere). Degenerate edges get no entry.
+// empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments of
+// an edge shrink towards a model vertex where another edge has shorter ones, growing back by g per
+// unit length (1 + g per segment, roughly); 0 keeps them uniform.
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h,
-                                                      const std::vector<double>& face_sizes = {});
+                                                      const std::vector<double>& face_sizes = {}, double gradation = 0);
 
 }  // namespace wefm_cad

@@ -29,8 +29,8 @@ std::vector<OptionSpec> mesh_specs() {
       {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
        false},
       {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
-      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves", "5", false},
-      {"min-angle", 0, "DEG", "free: Delaunay refinement angle bound in UV", "28", false},
+      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves, then up to 3 optimisation passes (0: neither)", "5", false},
+      {"min-angle", 0, "DEG", "free: UV angle bound of the circumcentre refinement after the front", "28", false},
       {"corner-angle", 0, "DEG", "loop vertices turning more than this stay boundary nodes", "30", false},
       {"max-elements", 0, "N", "fail rather than exceed this many elements (0 = no cap)", "0", false},
       {"domain-obj", 0, "FILE.obj", "2D domain mesh to write (v u v 0); default MESH.domain.obj", "", false},
@@ -49,8 +49,9 @@ void print_help() {
   std::printf(
       "Usage: wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite] [options]\n\n"
       "Flattens one face (as wefm flatten, with the same options), meshes the 2D domain at the 3D size H\n"
-      "and maps the mesh back to 3D. Free meshes are triangles (constrained Delaunay + refinement +\n"
-      "smoothing judged in 3D); transfinite meshes are quads on four corners (a periodic strip counts).\n\n"
+      "and maps the mesh back to 3D. Free meshes are triangles (frontal-Delaunay placement sized in 3D +\n"
+      "smoothing and optimisation judged in 3D); transfinite meshes are quads on four corners (a periodic\n"
+      "strip counts).\n\n"
       "Options:\n%s\n%s",
       format_options(mesh_specs()).c_str(), exit_codes_help());
 }

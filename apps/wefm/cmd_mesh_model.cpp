@@ -57,7 +57,7 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
-      {"smoothing", 0, "N", "UV smoothing passes of free meshes", smooth, false},
+      {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
       {"quiet", 'q', "", "no per-face progress lines", "", false},
   };
@@ -244,8 +244,14 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   if (args.has("size-ratio")) size *= model.bbox_diagonal;
   const auto t_edges = Clock::now();
   std::vector<double> face_sizes(model.faces.size(), size);
-  if (!args.has("no-local-size")) face_sizes = wefm_cad::local_face_sizes(model, size);
-  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes);
+  // Edges grade towards short neighbours at the rate (0.3 per unit length) the library grades a
+  // face's inside from its short boundary segments, so the two meet without a jump.
+  double gradation = 0;
+  if (!args.has("no-local-size")) {
+    face_sizes = wefm_cad::local_face_sizes(model, size);
+    gradation = 0.3;
+  }
+  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
   const double time_edges = since(t_edges);
 
   wefm_mesh_options free_options, tf_options;

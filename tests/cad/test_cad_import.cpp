@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -292,6 +293,54 @@ TEST_CASE("model edges are discretised once: nodes on the chain, closed edges at
       if (e.id == id) closed = e.vertices.front() == e.vertices.back();
     if (closed) CHECK(en.xyz.size() / 3 == 4);
   }
+}
+
+TEST_CASE("graded edge discretisation: long edges shrink towards a vertex where a short edge ends") {
+  // A 100 x 100 x 2 plate at h = 20: the rims are narrow (local size h/4 = 5), the edges of
+  // thickness 2 one segment each, so the long edges meet 2-long segments at every corner.
+  const wefm_cad::CadModel m = load_shape(BRepPrimAPI_MakeBox(100.0, 100.0, 2.0).Shape(), "wefm_plate.brep");
+  const double h = 20;
+  const std::vector<double> sizes = wefm_cad::local_face_sizes(m, h);
+  const auto uniform = wefm_cad::discretise_model_edges(m, h, sizes, 0.0);
+  const auto graded = wefm_cad::discretise_model_edges(m, h, sizes, 0.3);
+  REQUIRE(uniform.size() == 12);
+  REQUIRE(graded.size() == 12);
+  auto segments = [](const wefm_cad::EdgeNodes& e) {
+    std::vector<double> l;
+    for (size_t k = 0; k + 5 < e.xyz.size(); k += 3)
+      l.push_back(std::sqrt(std::pow(e.xyz[k + 3] - e.xyz[k], 2) + std::pow(e.xyz[k + 4] - e.xyz[k + 1], 2) + std::pow(e.xyz[k + 5] - e.xyz[k + 2], 2)));
+    return l;
+  };
+  int long_edges = 0;
+  for (const auto& [id, e] : graded) {
+    const std::vector<double> l = segments(e), u = segments(uniform.at(id));
+    double total = 0;
+    for (double x : l) total += x;
+    CAPTURE(id);
+    CAPTURE(total);
+    // The ends stay the chain's ends, bit for bit (faces sharing the edge weld on them).
+    for (int c = 0; c < 3; ++c) {
+      CHECK(e.xyz[static_cast<size_t>(c)] == uniform.at(id).xyz[static_cast<size_t>(c)]);
+      CHECK(e.xyz[e.xyz.size() - 3 + static_cast<size_t>(c)] == uniform.at(id).xyz[uniform.at(id).xyz.size() - 3 + static_cast<size_t>(c)]);
+    }
+    if (total < 50) {
+      CHECK(l.size() == u.size());  // the thickness edges set the corner size; nothing to grade
+      continue;
+    }
+    ++long_edges;
+    // Uniform: 20 segments of 5. Graded: about the corner size at both ends, growing by at most
+    // about 1 + g per segment, never above the edge size.
+    for (double x : u) CHECK(x == doctest::Approx(5.0).epsilon(1e-6));
+    CHECK(l.size() > u.size());
+    CHECK(l.front() < 3.0);
+    CHECK(l.back() < 3.0);
+    CHECK(l.front() == doctest::Approx(l.back()).epsilon(1e-6));
+    for (size_t k = 0; k < l.size(); ++k) {
+      CHECK(l[k] <= 5.0 * 1.05);
+      if (k > 0) CHECK(std::max(l[k], l[k - 1]) / std::min(l[k], l[k - 1]) <= 1.45);
+    }
+  }
+  CHECK(long_edges == 8);
 }
 
 TEST_CASE("unreadable and unknown files are reported, not thrown") {

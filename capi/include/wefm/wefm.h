@@ -610,7 +610,7 @@ typedef struct wefm_domain_mesh wefm_domain_mesh;
 
 /** wefm_mesh_options.type. */
 typedef enum wefm_mesh_type {
-  WEFM_MESH_FREE = 0,        /**< constrained Delaunay + refinement, triangles */
+  WEFM_MESH_FREE = 0,        /**< frontal-Delaunay triangles sized in 3D, then smoothing and optimisation */
   WEFM_MESH_TRANSFINITE = 1  /**< Coons patch on four corners, quads (or split triangles) */
 } wefm_mesh_type;
 
@@ -621,9 +621,9 @@ typedef struct wefm_mesh_options {
   double size;               /**< target 3D element size h (> 0). Required */
   int32_t corners[4];        /**< transfinite corners as vertex uses on the outer loop, -1 = detect. Default -1 */
   int quads;                 /**< transfinite: non-zero writes quads, zero splits each into two triangles. Default 1 */
-  int smoothing_iterations;  /**< free meshes: UV smoothing passes accepted only if 3D quality improves. Default 5 */
+  int smoothing_iterations;  /**< free meshes: smoothing passes accepted only if 3D quality improves, then min(this, 3) passes optimising sum log lambda. Default 5 */
   double corner_angle_deg;   /**< loop vertices turning more than this are kept as nodes. Default 30 */
-  double min_angle_deg;      /**< Delaunay refinement angle bound in UV. Default 28 */
+  double min_angle_deg;      /**< angle bound in UV of the circumcentre refinement after the front. Default 28 */
   int64_t max_elements;      /**< refuse to exceed this many elements (0 = no cap). Default 0 */
 } wefm_mesh_options;
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "wefm/core/error.hpp"
+#include "wefm/core/meshing/graded_spacing.hpp"
 
 namespace wefm::meshing {
 namespace {
@@ -74,7 +75,7 @@ LoopNodes discretise_run(const TriMesh& mesh, const Topology& topo, const Vector
 }
 
 std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, double h, double corner_angle_rad,
-                                        const EdgeNodes& given) {
+                                        const EdgeNodes& given, double gradation) {
   // Breaks are decided per mesh vertex so both sides of a repeated edge break at the same points.
   std::set<Index> breaks;
   // A closed edge (a whole boundary cycle, as derived from a bare mesh) starts at an arbitrary
@@ -87,7 +88,17 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
       if (std::fabs(turning_angle(topo, uv, l, j)) > corner_angle_rad)
         breaks.insert(topo.use_vertex[static_cast<size_t>(topo.loop_uses[static_cast<size_t>(l)][j])]);
 
-  std::vector<LoopNodes> out;
+  // Pieces between breaks, per loop: their break positions and uniform segment counts.
+  struct LoopPieces {
+    std::vector<size_t> bp;
+    std::vector<Index> counts;
+    std::vector<Index> pos_edge;  // loop position -> edge
+  };
+  std::vector<LoopPieces> pieces(topo.loop_uses.size());
+  // At each break vertex, the shortest uniform segment of the pieces (not given by the caller)
+  // that end there: the pieces grade down to it, so a short piece does not meet segments many
+  // times its length. Per vertex, so both sides of a repeated edge get the same nodes.
+  std::map<Index, double> vertex_size;
   for (Index l = 0; l < static_cast<Index>(topo.loop_uses.size()); ++l) {
     const LoopView L{mesh, topo, uv, l};
     const size_t n = L.size();
@@ -114,6 +125,24 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
       counts[k]++, total++;
       lengths[k] *= 0.5;
     }
+    for (size_t k = 0; k < bp.size(); ++k) {
+      if (!pos_edge.empty() && given.count(pos_edge[bp[k] % n])) continue;
+      const size_t to = bp.size() == 1 ? bp[k] + n : bp[(k + 1) % bp.size()];
+      const double u = run_length(mesh, topo, l, bp[k], to) / static_cast<double>(counts[k]);
+      for (size_t j : {bp[k], to}) {
+        const Index v = topo.use_vertex[static_cast<size_t>(L.use(j))];
+        auto [it, fresh] = vertex_size.emplace(v, u);
+        if (!fresh) it->second = std::min(it->second, u);
+      }
+    }
+    pieces[static_cast<size_t>(l)] = {std::move(bp), std::move(counts), std::move(pos_edge)};
+  }
+
+  std::vector<LoopNodes> out;
+  for (Index l = 0; l < static_cast<Index>(topo.loop_uses.size()); ++l) {
+    const LoopView L{mesh, topo, uv, l};
+    const size_t n = L.size();
+    const auto& [bp, counts, pos_edge] = pieces[static_cast<size_t>(l)];
     LoopNodes nodes;
     for (size_t k = 0; k < bp.size(); ++k) {
       const size_t from = bp[k], to = bp.size() == 1 ? bp[k] + n : bp[(k + 1) % bp.size()];
@@ -146,6 +175,10 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
         place(L, from, cnt, params, nodes);
         for (size_t q = 0; q < picked.size(); ++q) nodes.xyz[first + 1 + q] = picked[q].second;
         continue;
+      } else if (gradation > 0) {
+        const double s0 = vertex_size.at(topo.use_vertex[static_cast<size_t>(L.use(from))]);
+        const double s1 = vertex_size.at(topo.use_vertex[static_cast<size_t>(L.use(to))]);
+        params = graded_spacing(len, h, s0, s1, gradation, counts[k]);
       } else {
         for (Index q = 0; q < counts[k]; ++q) params.push_back(len * q / counts[k]);
       }

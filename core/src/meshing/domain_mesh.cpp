@@ -7,6 +7,7 @@
 #include "wefm/core/error.hpp"
 #include "wefm/core/meshing/free_mesh.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
+#include "wefm/core/meshing/size_field.hpp"
 #include "wefm/core/meshing/transfinite.hpp"
 #include "wefm/core/quality.hpp"
 
@@ -37,7 +38,7 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     transfinite_mesh(mesh, topo, uv, map, o, out);
   } else {
     auto t0 = std::chrono::steady_clock::now();
-    const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given);
+    const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);
     out.report.time_boundary = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     free_mesh(loops, map, o, out, cancel);
     t0 = std::chrono::steady_clock::now();

@@ -1,5 +1,7 @@
 #include "wefm/core/meshing/surface_map.hpp"
 
+#include <cmath>
+
 namespace wefm::meshing {
 
 SurfaceMap::SurfaceMap(const TriMesh& mesh, const Topology& topo, const VectorXc& uv)
@@ -23,6 +25,23 @@ bool SurfaceMap::lift(const P2& p, Vec3& xyz, Vec3* normal) const {
     *normal = n.norm() > 0 ? n.normalized() : n;
   }
   return hit.inside;
+}
+
+bool SurfaceMap::jacobian(const P2& p, Eigen::Matrix<double, 3, 2>& J) const {
+  const UvHit hit = loc_.locate(p);
+  J.setZero();
+  if (hit.tri < 0) return false;
+  const Tri& t = mesh_.triangles[static_cast<size_t>(hit.tri)];
+  Eigen::Matrix<double, 3, 2> X;
+  Eigen::Matrix2d U;
+  for (int k = 0; k < 2; ++k) {
+    X.col(k) = mesh_.vertices[static_cast<size_t>(t[static_cast<size_t>(k) + 1])] - mesh_.vertices[static_cast<size_t>(t[0])];
+    U.col(k) = loc_.corner(hit.tri, k + 1) - loc_.corner(hit.tri, 0);
+  }
+  const double det = U.determinant();
+  if (!(std::fabs(det) > 0) || !std::isfinite(det)) return false;
+  J = X * U.inverse();
+  return J.allFinite();
 }
 
 }  // namespace wefm::meshing

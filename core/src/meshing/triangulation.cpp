@@ -24,6 +24,7 @@ Index Triangulation::new_tri(Index a, Index b, Index c) {
   if (!free_.empty()) {
     id = free_.back();
     free_.pop_back();
+    t.gen = tris_[id].gen + 1;
     tris_[id] = t;
   } else {
     id = static_cast<Index>(tris_.size());
@@ -112,7 +113,7 @@ Index Triangulation::locate(const P2& p, Index t, bool stop_at_segments, std::ar
   return -1;
 }
 
-Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encroached) {
+Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encroached, const std::function<bool(Index)>* near_ok) {
   std::array<Index, 2> crossed{};
   const Index t0 = locate(p, hint, encroached != nullptr, &crossed);
   if (t0 == -2) {
@@ -150,6 +151,7 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
   bool ok = true;
   for (const Rim& r : rim) {
     if (!(orient2d(pts_[r.a], pts_[r.b], p) > 0)) ok = false;
+    if (ok && near_ok && r.a >= kSuper && !(*near_ok)(r.a - kSuper)) ok = false;
     if (ok && encroached && r.c && r.a >= kSuper && r.b >= kSuper) {
       // Encroachment zone: points closer to the segment than half its length (the diametral
       // disk widened into a stadium). The disk alone leaves the region above a shared segment
@@ -199,6 +201,8 @@ void Triangulation::flip(Index t, int i) {
   const Index nab = tris_[t].n[pv(i)], nca = tris_[t].n[nx(i)], ndc = tris_[s].n[pv(j)], nbd = tris_[s].n[nx(j)];
   const bool cab = tris_[t].c[pv(i)], cca = tris_[t].c[nx(i)], cdc = tris_[s].c[pv(j)], cbd = tris_[s].c[nx(j)];
   T& x = tris_[t];
+  ++x.gen;
+  ++tris_[s].gen;
   x.v = {a, b, d};
   x.c = {cbd, false, cab};
   T& y = tris_[s];

@@ -24,8 +24,10 @@ using EdgeNodes = std::map<Index, std::vector<Vec3>>;
 // UV turning angle (radians, left turn positive) at position j of loop l.
 double turning_angle(const Topology& topo, const VectorXc& uv, Index loop, size_t j);
 
+// With `gradation` g > 0 the pieces not given by the caller shrink towards a break where another
+// piece has shorter segments and grow back by g per unit length (graded_spacing.hpp).
 std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, double h,
-                                        double corner_angle_rad, const EdgeNodes& given);
+                                        double corner_angle_rad, const EdgeNodes& given, double gradation = 0);
 
 // Nodes along positions [from, to] (cyclic, to after from) of loop l at n uniform 3D intervals.
 LoopNodes discretise_run(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, Index loop, size_t from,

@@ -1,6 +1,7 @@
 #pragma once
 // Free triangular meshing of the domain (METHOD §9.2): constrained Delaunay triangulation of the
-// boundary nodes, Delaunay refinement sized so 3D elements come out near h, then improvement in 3D.
+// boundary nodes, frontal-Delaunay node placement at the 3D size field (frontal.hpp), circumcentre
+// refinement for what the front leaves, then improvement in 3D (smoothing.hpp).
 #include <atomic>
 
 #include "wefm/core/meshing/domain_mesh.hpp"

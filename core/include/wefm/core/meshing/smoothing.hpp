@@ -1,6 +1,7 @@
 #pragma once
 // Mesh improvement judged in 3D: edge flips and UV node moves are kept only when the worst Lo
-// lambda of the 3D triangles they touch improves (the UV triangles must stay positive).
+// lambda of the 3D triangles they touch improves (the UV triangles must stay positive); then a few
+// passes of optimise_nodes (node_optimisation.hpp) for the sum of log lambda.
 #include <array>
 #include <vector>
 

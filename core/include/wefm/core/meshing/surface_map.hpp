@@ -10,6 +10,9 @@ class SurfaceMap {
   SurfaceMap(const TriMesh& mesh, const Topology& topo, const VectorXc& uv);
   // False when p lies outside the domain; xyz is then the nearest domain point's image.
   bool lift(const P2& p, Vec3& xyz, Vec3* normal = nullptr) const;
+  // Derivative of the map at p (columns d xyz / du, d xyz / dv) on the facet holding p, or the
+  // nearest one outside. False for a degenerate facet: J is then zero.
+  bool jacobian(const P2& p, Eigen::Matrix<double, 3, 2>& J) const;
   const UvLocator& locator() const { return loc_; }
 
  private:

@@ -1,8 +1,9 @@
 #pragma once
 // Constrained Delaunay triangulation of a UV domain (METHOD §9.2, free meshing): incremental
 // Bowyer-Watson insertion inside a super-triangle, segments recovered by edge flips (Sloan), the
-// outside and the holes removed by parity across the segments, then Delaunay refinement. All
-// topological decisions go through the robust predicates.
+// outside and the holes removed by parity across the segments; then insertion by a refinement
+// strategy (frontal.cpp, or the circumcentre refinement here). All topological decisions go
+// through the robust predicates.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -23,7 +24,10 @@ class Triangulation {
   // is a triangle slot to start the search from (any value works).
   // Inserts p unless it lies outside, on a segment, or closer than half its length to a segment it
   // can see; then `encroached` (if given) gets that segment's two nodes. Returns the new node or -1.
-  Index insert(const P2& p, Index hint, std::array<Index, 2>* encroached = nullptr);
+  // `near_ok`, if given, is asked about every node the new one would be joined to and can refuse
+  // the insertion (a point too close to a node, judged in 3D by the caller).
+  Index insert(const P2& p, Index hint, std::array<Index, 2>* encroached = nullptr,
+               const std::function<bool(Index)>* near_ok = nullptr);
 
   // Refinement: `size(a, b, c)` (nodes) says +1 too big (always refined), 0 fine (refined when an
   // angle in UV is below `min_angle_rad`) or -1 too small to refine at all, which bounds the
@@ -32,6 +36,19 @@ class Triangulation {
   // triangle on it (segments are never split: their nodes are the boundary discretisation).
   void refine(const std::function<int(Index, Index, Index)>& size, double min_angle_rad, std::int64_t max_nodes,
               const std::function<void(Index)>& on_insert);
+
+  // Read access for refinement strategies outside this class (frontal.cpp). Triangle slots are
+  // reused after a deletion; `generation` changes whenever a slot's triangle does, so a queued
+  // (slot, generation) pair tells a stale entry from a live one. Corners are in the caller's node
+  // numbering, counter-clockwise; corner i faces edge i, whose neighbour is `neighbour(t, i)`.
+  Index slot_count() const { return static_cast<Index>(tris_.size()); }
+  bool live(Index t) const { return tris_[static_cast<size_t>(t)].live; }
+  bool inside(Index t) const { return tris_[static_cast<size_t>(t)].inside; }
+  std::uint32_t generation(Index t) const { return tris_[static_cast<size_t>(t)].gen; }
+  Index corner(Index t, int i) const { return tris_[static_cast<size_t>(t)].v[static_cast<size_t>(i)] - 3; }
+  Index neighbour(Index t, int i) const { return tris_[static_cast<size_t>(t)].n[static_cast<size_t>(i)]; }
+  bool constrained(Index t, int i) const { return tris_[static_cast<size_t>(t)].c[static_cast<size_t>(i)]; }
+  std::vector<Index> triangles_around(Index node) const { return star(node + 3); }
 
   // Structural check for tests: neighbour links reciprocal, every live triangle positive.
   bool valid() const;
@@ -46,6 +63,7 @@ class Triangulation {
     std::array<Index, 3> v{}, n{{-1, -1, -1}};
     std::array<bool, 3> c{{false, false, false}};
     bool live = true, inside = true;
+    std::uint32_t gen = 0;
   };
   Index locate(const P2& p, Index hint, bool stop_at_segments, std::array<Index, 2>* crossed) const;
   void flip(Index t, int i);

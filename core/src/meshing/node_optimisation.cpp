@@ -1,0 +1,114 @@
+#include "wefm/core/meshing/node_optimisation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "wefm/core/meshing/mesh_quality.hpp"
+
+namespace wefm::meshing {
+
+std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<std::array<Index, 3>>& tris, Index fixed,
+                            const SurfaceMap& map, double floor) {
+  const size_t n = uv.size();
+  // Triangles around each node, in one array (counting sort by node).
+  std::vector<Index> start(n + 1, 0), items(3 * tris.size());
+  for (const auto& t : tris)
+    for (Index v : t) start[static_cast<size_t>(v) + 1]++;
+  for (size_t k = 1; k <= n; ++k) start[k] += start[k - 1];
+  {
+    std::vector<Index> fill(start.begin(), start.end() - 1);
+    for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
+      for (Index v : tris[static_cast<size_t>(t)]) items[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = t;
+  }
+  struct Star {
+    double sum, worst;
+  };
+  // Sum of log lambda and worst lambda over the star of v; sum = -inf if a UV triangle inverts.
+  auto star = [&](Index v) {
+    Star s{0.0, 1.0};
+    for (Index k = start[static_cast<size_t>(v)]; k < start[static_cast<size_t>(v) + 1]; ++k) {
+      const auto& T = tris[static_cast<size_t>(items[static_cast<size_t>(k)])];
+      const size_t a = static_cast<size_t>(T[0]), b = static_cast<size_t>(T[1]), c = static_cast<size_t>(T[2]);
+      if (!(orient2d(uv[a], uv[b], uv[c]) > 0)) return Star{-1e300, -1.0};
+      const double l = lo_lambda(xyz[a], xyz[b], xyz[c]);
+      if (!(l > 0)) return Star{-1e300, -1.0};
+      s.sum += std::log(l);
+      s.worst = std::min(s.worst, l);
+    }
+    return s;
+  };
+  std::int64_t moves = 0;
+  for (Index v = fixed; v < static_cast<Index>(n); ++v) {
+    const size_t vi = static_cast<size_t>(v);
+    if (start[vi] == start[vi + 1]) continue;
+    const Star before = star(v);
+    if (!(before.worst > 0)) continue;
+    Eigen::Matrix<double, 3, 2> J;
+    if (!map.jacobian(uv[vi], J)) continue;
+    const Vec3 nrm = J.col(0).cross(J.col(1));
+    if (!(nrm.norm() > 0)) continue;
+    const Vec3 unit_n = nrm.normalized();
+    const Eigen::Matrix<double, 2, 3> back = (J.transpose() * J).inverse() * J.transpose();
+    // Gradient of sum log lambda w.r.t. the node's 3D position, and the star's mean edge length.
+    const Vec3 x = xyz[vi];
+    Vec3 g = Vec3::Zero();
+    double edge = 0;
+    int edges = 0;
+    for (Index k = start[vi]; k < start[vi + 1]; ++k) {
+      const auto& T = tris[static_cast<size_t>(items[static_cast<size_t>(k)])];
+      int i = 0;
+      while (T[static_cast<size_t>(i)] != v) ++i;
+      const Vec3& a = xyz[static_cast<size_t>(T[static_cast<size_t>((i + 1) % 3)])];
+      const Vec3& b = xyz[static_cast<size_t>(T[static_cast<size_t>((i + 2) % 3)])];
+      const Vec3 N = (a - x).cross(b - x);
+      const double area2 = N.norm();
+      const double S = (a - x).squaredNorm() + (b - x).squaredNorm() + (a - b).squaredNorm();
+      if (!(area2 > 0) || !(S > 0)) continue;
+      // d area / dx = (a - b) x N^ / 2, d S / dx = 2 (2x - a - b).
+      g += (a - b).cross(N / area2) / area2 - 2.0 * (2.0 * x - a - b) / S;
+      edge += (a - x).norm();
+      ++edges;
+    }
+    g -= g.dot(unit_n) * unit_n;
+    const double slope = g.norm();
+    if (!(slope > 0) || edges == 0) continue;
+    edge /= edges;
+    const Vec3 dir = g / slope;
+    const P2 p0 = uv[vi];
+    auto try_step = [&](double t, Star& out) {
+      const P2 p = p0 + back * (t * dir);
+      Vec3 y;
+      if (!map.lift(p, y)) return false;
+      uv[vi] = p, xyz[vi] = y;
+      out = star(v);
+      uv[vi] = p0, xyz[vi] = x;
+      return true;
+    };
+    // Parabola through f(0), its slope and f(t1): its top is the step, within half an edge.
+    const double t1 = 0.05 * edge;
+    Star s1;
+    if (!try_step(t1, s1)) continue;
+    double best_t = 0;
+    Star best = before;
+    auto consider = [&](double t, const Star& s) {
+      if (s.sum > best.sum + 1e-12 && s.worst >= std::min(before.worst, floor)) best = s, best_t = t;
+    };
+    consider(t1, s1);
+    const double curv = 2 * (before.sum + slope * t1 - s1.sum) / (t1 * t1);
+    if (curv > 0) {
+      const double t = std::min(slope / curv, 0.5 * edge);
+      Star s;
+      if (std::fabs(t - t1) > 1e-3 * t1 && try_step(t, s)) consider(t, s);
+    }
+    if (best_t > 0) {
+      const P2 p = p0 + back * (best_t * dir);
+      Vec3 y;
+      map.lift(p, y);
+      uv[vi] = p, xyz[vi] = y;
+      ++moves;
+    }
+  }
+  return moves;
+}
+
+}  // namespace wefm::meshing
