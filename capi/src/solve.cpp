@@ -150,6 +150,7 @@ WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* re
     r.auto_cut_uncut_kept = s.auto_cut_uncut_kept ? 1 : 0;
     r.auto_cut_length = s.auto_cut_length;
     r.auto_cut_other_score = s.auto_cut_other_score;
+    r.via_s = s.via_s;
     r.time_topology = s.time.topology;
     r.time_coefficients = s.time.coefficients;
     r.time_assembly = s.time.assembly;

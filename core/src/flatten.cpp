@@ -281,7 +281,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   // Only when no step is valid does the best score win.
   auto rank_of = [&](const VectorXc& zz, double s_of) {
     const double sc = score_of(zz);
-    const bool valid = last_quality.flips == 0 && last_quality.boundary_intersections == 0;
+    const bool valid = last_quality.flips == 0 && last_quality.boundary_intersections == 0 && s_of <= opt.s + 1e-12;
     return std::make_pair(valid ? 1 : 0, valid ? s_of : sc);
   };
   VectorXc best_z = z;
@@ -302,11 +302,15 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     if (!gn.share_factor(kkt.factor(), kkt.split_use(0), kkt.split_use(1))) kkt.release();
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
     gn.set_scale_center(gauge.center);
+    // The s schedule: up to the target in s_step steps, or up to via_s and then back to the target.
+    std::vector<double> schedule;
+    const double s_top = in.via_s > opt.s ? in.via_s : opt.s;
+    for (double sv = 0; sv < s_top - 1e-12;) schedule.push_back(sv = std::min(s_top, sv + opt.s_step));
+    if (s_top > opt.s) schedule.push_back(opt.s);
     double s_cur = 0;
-    while (s_cur < opt.s - 1e-12) {
-      const double s_next = std::min(opt.s, s_cur + opt.s_step);
+    for (const double s_next : schedule) {
       const GaussNewtonReport gr = gn.run(z, s_next, opt.rho_tolerance, opt.max_rho_iterations, gauge.vector && s_next >= 1.0, [&](int it) {
-        stage.check(0.4 + 0.5 * (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / opt.s, "continuation");
+        stage.check(0.4 + 0.5 * std::min(1.0, (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / s_top), "continuation");
       });
       StepInfo step;
       step.s = s_next;
@@ -334,7 +338,9 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   }
   rep.time.continuation = now() - t_cont;
   rep.s = early ? 0.0 : opt.s;
-  if (opt.s > 0 && !early && best_s < opt.s) {
+  if (opt.s > 0 && !early) {
+    // The best step is the last one whenever that is valid (ties go to the later step); with a
+    // schedule that comes back down from via_s an earlier step may be the best.
     z = best_z;
     rep.s = best_s;
   }
@@ -398,7 +404,15 @@ FlattenResult flatten(const FlattenInput& in) {
     alt.options.min_beta = floor;
     try_instead(alt, [](SolveReport& r) { r.min_beta_raised = true; });
   }
-  // 2. A face whose low-distortion layout coils over itself (a helical strip: its sides curve one
+  // 2. The energy below s = 2 lets a layout fold over itself where s = 2 does not (the
+  //    altitude term of degree 1 - s grows as a base edge shrinks only for s > 1): climb to s = 2,
+  //    then step back down to the target from that valid layout.
+  if (in.options.s > 0 && in.options.s < 2.0 && short_of_target(res)) {
+    FlattenInput alt = in;
+    alt.via_s = 2.0;
+    try_instead(alt, [](SolveReport& r) { r.via_s = 2.0; });
+  }
+  // 3. A face whose low-distortion layout coils over itself (a helical strip: its sides curve one
   //    way for more than a turn) needs its sides straightened: the boundary term, strengthened,
   //    aims gentle turns at a fraction of their 3D value; the least unwinding that gives a valid
   //    layout at the target s wins. The bottle's thread face: valid only at s = 0 before

@@ -93,3 +93,23 @@ TEST_CASE("an open cylinder with no cut (an annulus) is determinate with the bou
     CHECK(std::abs(wind / (2 * kPi) - 1.0) < 1e-6);
   }
 }
+
+TEST_CASE("the uncut open cylinder at s = 1 comes back valid at s = 1, through s = 2") {
+  // Climbing straight to s = 1 it folds over itself (the continuation fell back to the s = 0
+  // layout); the retry climbs to s = 2, where it stays valid, and steps back down.
+  const TriMesh m = test::open_cylinder(48, 12);
+  Face f;
+  f.set_mesh(m);
+  f.set_options(test::with_s(1.0));
+  try {
+    f.solve(nullptr, nullptr);
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::not_converged);
+  }
+  REQUIRE(f.has_result());
+  const auto& r = f.result();
+  MESSAGE("uncut cylinder at s = 1: score " << r.report.quality.score << ", s reached " << r.report.s << ", via s " << r.report.via_s);
+  CHECK(r.report.s == doctest::Approx(1.0));
+  CHECK(r.report.quality.flips == 0);
+  CHECK(r.report.quality.boundary_intersections == 0);
+}

@@ -140,6 +140,7 @@ class Report(ctypes.Structure):
         ("auto_cut_uncut_kept", c_int32),
         ("auto_cut_length", c_double),
         ("auto_cut_other_score", c_double),
+        ("via_s", c_double),
     ]
 
 

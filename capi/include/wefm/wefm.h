@@ -567,6 +567,8 @@ typedef struct wefm_report {
   double auto_cut_length;        /**< 3D length of the automatic cut (0 without one) */
   double auto_cut_other_score;   /**< annulus only: score of the layout not returned (uncut, or cut if
                                       auto_cut_uncut_kept); NaN if not computed */
+  double via_s;                  /**< 0, or 2 when the continuation to the target s ended invalid and this
+                                      layout came back down to it from s = 2 */
 } wefm_report;
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */

@@ -42,6 +42,7 @@ struct SolveReport {
   double auto_cut_other_score = std::nan("");  // annulus: score of the layout not kept (uncut or cut)
   bool min_beta_raised = false;  // the first layout was invalid; this one used a stronger beta floor
   double unwind = 1.0;           // < 1: the first layout overlapped itself; this one straightened gentle boundary turns
+  double via_s = 0;              // > s: the first layout was invalid at s; this one came back down from via_s
   Index degenerate_triangles = 0;
   Timings time;
   double peak_memory_mb = 0;
@@ -68,6 +69,7 @@ struct FlattenInput {
   const std::atomic<bool>* cancel = nullptr;
   double unwind = 1.0;                   // see assemble_boundary_operator (set by flatten's own retries)
   double boundary_weight_override = 0;   // > 0: replaces options.boundary_weight (the same retries)
+  double via_s = 0;                      // > options.s: the continuation climbs to via_s, then steps back (the same retries)
 };
 
 // Throws Error on failure; Error(not_converged) carries no result, so callers wanting the partial
