@@ -397,7 +397,8 @@ FlattenResult flatten(const FlattenInput& in) {
   // A domain with flips or a self-overlapping boundary is unusable for meshing; layouts that are
   // valid at the target s never take the paths below, so they cost nothing on them.
   // 1. Needle and zero-area triangles (tiny altitude/base, huge weights) drive most flips: retry with
-  //    a stronger floor on beta. Real sample: the bottle thread face, 4 overlaps -> valid (0.37).
+  //    a stronger floor on beta. Real sample: the bottle thread face, 4 overlaps -> valid, but only
+  //    at s = 0 (the unwinding below then reaches s = 1).
   const double floor = 0.05;
   if (in.options.min_beta < floor) {
     FlattenInput alt = in;
