@@ -343,7 +343,7 @@ def table(rows, cmdline, build_commit, repeat, cgal_version):
              "    apt-get install -y libcgal-dev      # benchmark only; the library never links CGAL",
              "    cmake --preset release -DWEFM_BUILD_BENCH=ON && cmake --build build/release -j2 --target wefm_cli wefm-peer-cgal",
              f"    {cmdline}", "",
-             f"Library built from commit `{build_commit}`.", ""]
+             f"Run from commit `{build_commit}` (the build tree it names, built from the same checkout).", ""]
     lines += ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] * 2 + ["--:"] * 2 + ["---"] * (len(methods) + 1)) + "|"]
     counts = {m: [0, 0, 0] for m, _ in methods}
     for face, info, results in rows:
@@ -369,7 +369,42 @@ def table(rows, cmdline, build_commit, repeat, cgal_version):
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("| **valid layouts** | | | | " + " | ".join(f"**{counts[m][1]} / {counts[m][0]}**" for m, _ in methods) + " | |")
     lines.append("| **best (within 0.0005)** | | | | " + " | ".join(f"{counts[m][2]}" for m, _ in methods) + " | |")
-    return lines
+    return lines + [""] + findings(rows, methods)
+
+
+def findings(rows, methods):
+    """Sentences read off the table (so they stay true when it is regenerated)."""
+    out = []
+    for m, name in methods:
+        bad = []
+        for face, _, results in rows:
+            r = next((x for x in results if x["method"] == m), None)
+            if r is None or valid(r):
+                continue
+            c = r.get("check")
+            if c:
+                what = [f"{c['flips']} flipped triangles" if c["flips"] else "",
+                        f"{c['boundary_intersections']} boundary intersections" if c["boundary_intersections"] else ""]
+                bad.append(f"{face[0]} ({', '.join(w for w in what if w)})")
+            else:
+                bad.append(f"{face[0]} ({cell(r).replace('**', '')})")
+        out.append(f"- {name}: {len(rows) - len(bad)} of {len(rows)} layouts valid" +
+                   (f"; not valid: {'; '.join(bad)}." if bad else "."))
+    beaten = []
+    for face, _, results in rows:
+        by = {r["method"]: r for r in results}
+        wefm_best = max((by[m]["check"]["paper_score"] for m, _ in methods if m.startswith("wefm") and m in by
+                         and valid(by[m])), default=None)
+        for m, name in methods:
+            if m.startswith("wefm") or m not in by or not valid(by[m]):
+                continue
+            sc = by[m]["check"]["paper_score"]
+            if wefm_best is None or sc > wefm_best + 5e-4:
+                beaten.append(f"{face[0]} ({name} {sc:.3f}, best wefm " +
+                              ("none valid" if wefm_best is None else f"{wefm_best:.3f}") + ")")
+    out.append("- A CGAL layout scores above every wefm layout of the same face on: " +
+               ("; ".join(beaten) if beaten else "no face") + ".")
+    return out
 
 
 def write_section(results_md, lines):
