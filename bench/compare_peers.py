@@ -250,6 +250,14 @@ def fmt_time(t):
     return f"{t:.2f} s" if t >= 0.1 else (f"{t * 1000:.0f} ms" if t >= 0.01 else f"{t * 1000:.1f} ms")
 
 
+def fmt_angle(a):
+    return f"{a:.2f}" if a < 100 else f"{a:.2g}"
+
+
+def plural(n, word):
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
 def valid(res):
     c = res.get("check")
     return bool(c) and c["flips"] == 0 and c["boundary_intersections"] == 0
@@ -288,7 +296,7 @@ def cell(res):
             notes.append(f"{st}: {j.get('message', '')}" if j.get("message") else st)
         if not c:
             return "; ".join(notes + [res.get("check_error") or "no layout"])
-    text = (f"{c['paper_score']:.3f} ({c['flips']} / {c['boundary_intersections']}), ∠{c['angle_dist_mean']:.2f}, "
+    text = (f"{c['paper_score']:.3f} ({c['flips']} / {c['boundary_intersections']}), ∠{fmt_angle(c['angle_dist_mean'])}, "
             f"{fmt_time(best_time(res))}")
     if not valid(res):
         text = f"**{text}**"
@@ -383,8 +391,8 @@ def findings(rows, methods):
                 continue
             c = r.get("check")
             if c:
-                what = [f"{c['flips']} flipped triangles" if c["flips"] else "",
-                        f"{c['boundary_intersections']} boundary intersections" if c["boundary_intersections"] else ""]
+                what = [plural(c["flips"], "flipped triangle") if c["flips"] else "",
+                        plural(c["boundary_intersections"], "boundary intersection") if c["boundary_intersections"] else ""]
                 bad.append(f"{face[0]} ({', '.join(w for w in what if w)})")
             else:
                 bad.append(f"{face[0]} ({cell(r).replace('**', '')})")
