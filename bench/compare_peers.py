@@ -351,7 +351,8 @@ def table(rows, cmdline, build_commit, repeat, cgal_version):
              "    apt-get install -y libcgal-dev      # benchmark only; the library never links CGAL",
              "    cmake --preset release -DWEFM_BUILD_BENCH=ON && cmake --build build/release -j2 --target wefm_cli wefm-peer-cgal",
              f"    {cmdline}", "",
-             f"Run from commit `{build_commit}` (the build tree it names, built from the same checkout).", ""]
+             f"Run at commit `{build_commit}`, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, load average "
+             f"{os.getloadavg()[0]:.1f} at the end.", ""]
     lines += ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] * 2 + ["--:"] * 2 + ["---"] * (len(methods) + 1)) + "|"]
     counts = {m: [0, 0, 0] for m, _ in methods}
     for face, info, results in rows:
