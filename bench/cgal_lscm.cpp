@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cgal_errors.hpp"
 #include "face_generator.hpp"
 #include "process_stats.hpp"
 
@@ -65,7 +66,7 @@ int main(int argc, char** argv) {
   const SMP::Error_code err = SMP::parameterize(sm, SMP::LSCM_parameterizer_3<SurfaceMesh>(), border, uv);
   j["time_parameterize"] = now_seconds() - t;
   j["cpu_parameterize"] = wefm_bench::cpu_seconds() - c0;
-  j["status"] = err == SMP::OK ? std::string("ok") : std::string("CGAL error: ") + SMP::get_error_message(err);
+  j["status"] = err == SMP::OK ? std::string("ok") : std::string("CGAL error: ") + wefm_bench::cgal_error_name(err);
   j["peak_rss_mb"] = wefm_bench::peak_rss_mb();
   std::printf("%s\n", j.dump().c_str());
   return 0;

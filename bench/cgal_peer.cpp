@@ -41,6 +41,7 @@
 #include <string>
 #include <vector>
 
+#include "cgal_errors.hpp"
 #include "process_stats.hpp"
 
 #ifndef CGAL_EIGEN3_ENABLED
@@ -58,23 +59,6 @@ using UvMap = SurfaceMesh::Property_map<VertexIndex, Kernel::Point_2>;
 
 const char* const kMethods[] = {"lscm", "arap", "dcm", "mvc"};
 
-// CGAL 5.5's get_error_message() table lacks the ERROR_NO_TOPOLOGICAL_BALL entry, so every message
-// after it is shifted by one and the last code reads past the table: name the codes here instead.
-const char* error_name(SMP::Error_code e) {
-  switch (e) {
-    case SMP::OK: return "OK";
-    case SMP::ERROR_EMPTY_MESH: return "ERROR_EMPTY_MESH";
-    case SMP::ERROR_NON_TRIANGULAR_MESH: return "ERROR_NON_TRIANGULAR_MESH";
-    case SMP::ERROR_NO_TOPOLOGICAL_DISC: return "ERROR_NO_TOPOLOGICAL_DISC";
-    case SMP::ERROR_NO_TOPOLOGICAL_BALL: return "ERROR_NO_TOPOLOGICAL_BALL";
-    case SMP::ERROR_BORDER_TOO_SHORT: return "ERROR_BORDER_TOO_SHORT";
-    case SMP::ERROR_NON_CONVEX_BORDER: return "ERROR_NON_CONVEX_BORDER";
-    case SMP::ERROR_CANNOT_SOLVE_LINEAR_SYSTEM: return "ERROR_CANNOT_SOLVE_LINEAR_SYSTEM";
-    case SMP::ERROR_NO_1_TO_1_MAPPING: return "ERROR_NO_1_TO_1_MAPPING";
-    case SMP::ERROR_WRONG_PARAMETER: return "ERROR_WRONG_PARAMETER";
-  }
-  return "unknown CGAL error code";
-}
 
 void usage(FILE* to) {
   std::fprintf(to,
@@ -308,7 +292,7 @@ int main(int argc, char** argv) {
       rc = rc == 0 ? 1 : rc;
     } else if (code != SMP::OK) {
       j["status"] = "cgal error";
-      j["message"] = error_name(code);
+      j["message"] = wefm_bench::cgal_error_name(code);
       rc = rc == 0 ? 1 : rc;
     } else {
       j["status"] = non_finite ? "non-finite uv" : "ok";
