@@ -44,6 +44,15 @@ std::string error_of(const std::string& path, double tol = 0) {
   return "";
 }
 
+Errc code_of(const std::string& path) {
+  try {
+    read_mesh(path, 0);
+  } catch (const Error& e) {
+    return e.code();
+  }
+  return Errc::internal;
+}
+
 template <class T>
 void put(std::string& s, T v, bool big_endian = false) {
   char b[sizeof(T)];
@@ -104,6 +113,18 @@ TEST_CASE("OBJ: errors name the file and line") {
   CHECK(error_of(write_file("e8.obj", "v 0 0 0\nf 1 2 99999999999999999999\n")).find("e8.obj:2: bad face index") != std::string::npos);
   CHECK(error_of(temp_path("missing.obj")).find("cannot open") != std::string::npos);
   CHECK(error_of(write_file("x.xyz", "")).find("unsupported mesh format") != std::string::npos);
+}
+
+TEST_CASE("mesh files: a file that cannot be read is an I/O error, malformed content an invalid mesh") {
+  CHECK(code_of(temp_path("missing.obj")) == Errc::io);
+  std::filesystem::create_directories(temp_path("dir.obj"));
+  CHECK(code_of(temp_path("dir.obj")) == Errc::io);
+  CHECK(code_of(write_file("m1.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")) == Errc::invalid_mesh);
+  CHECK(code_of(write_file("m2.obj", "v 0 0 0\nv 1 0\nf 1 2 3\n")) == Errc::invalid_mesh);
+  CHECK(code_of(write_file("m3.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n")) == Errc::invalid_mesh);
+  CHECK(code_of(write_file("m4.ply", "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n0 0 0\n")) == Errc::invalid_mesh);
+  CHECK(code_of(write_file("m5.stl", "not an stl")) == Errc::invalid_mesh);
+  CHECK(code_of(write_file("m6.xyz", "")) == Errc::unsupported);
 }
 
 TEST_CASE("OFF: doubles are exact, polygons, colours and comments skipped") {

@@ -11,7 +11,7 @@ namespace wefm::io {
 namespace {
 
 [[noreturn]] void fail_at(const std::string& path, std::size_t line, const std::string& what) {
-  fail(Errc::io, path + ":" + std::to_string(line) + ": " + what);
+  fail(Errc::invalid_mesh, path + ":" + std::to_string(line) + ": " + what);
 }
 
 }  // namespace
@@ -65,8 +65,8 @@ ReadResult read_obj(const std::string& path) {
   const Index nv = static_cast<Index>(std::min<std::size_t>(vertices.size(), 0x7fffffff));
   for (const Tri& t : triangles)
     for (Index v : t)
-      if (v >= nv) fail(Errc::io, path + ": face index " + std::to_string(v + 1LL) + " exceeds the " + std::to_string(vertices.size()) + " vertices");
-  if (triangles.empty()) fail(Errc::io, path + ": no faces found");
+      if (v >= nv) fail(Errc::invalid_mesh, path + ": face index " + std::to_string(v + 1LL) + " exceeds the " + std::to_string(vertices.size()) + " vertices");
+  if (triangles.empty()) fail(Errc::invalid_mesh, path + ": no faces found");
   vertices.shrink_to_fit();
   triangles.shrink_to_fit();
   return r;

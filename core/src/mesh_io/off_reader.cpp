@@ -14,7 +14,7 @@ class Scanner {
  public:
   Scanner(const FileBuffer& f, const std::string& path) : p_(f.begin()), end_(f.end()), path_(path) {}
 
-  [[noreturn]] void error(const std::string& what) const { fail(Errc::io, path_ + ":" + std::to_string(line_) + ": " + what); }
+  [[noreturn]] void error(const std::string& what) const { fail(Errc::invalid_mesh, path_ + ":" + std::to_string(line_) + ": " + what); }
 
   // Moves to the next token across blanks, line ends and comments; false at the end of the file.
   bool next_token() {
@@ -110,7 +110,7 @@ ReadResult read_off(const std::string& path) {
     add_fan(r.mesh.triangles, poly.data(), poly.size());
     s.end_record();
   }
-  if (r.mesh.triangles.empty()) fail(Errc::io, path + ": no faces found");
+  if (r.mesh.triangles.empty()) fail(Errc::invalid_mesh, path + ": no faces found");
   return r;
 }
 

@@ -63,7 +63,7 @@ class BinaryCursor {
   BinaryCursor(const char* p, const char* end, bool swap, const std::string& path) : p_(p), end_(end), swap_(swap), path_(path) {}
   double value(Type t) {
     const std::size_t n = size_of(t);
-    if (static_cast<std::size_t>(end_ - p_) < n) fail(Errc::io, path_ + ": PLY data ends early (truncated file?)");
+    if (static_cast<std::size_t>(end_ - p_) < n) fail(Errc::invalid_mesh, path_ + ": PLY data ends early (truncated file?)");
     unsigned char b[8];
     std::memcpy(b, p_, n);
     p_ += n;
@@ -97,7 +97,7 @@ class AsciiCursor {
     while (p_ < end_ && (is_blank(*p_) || *p_ == '\n')) ++p_;
     double v = 0;
     const char* q = p_ < end_ ? scan_double(p_, end_, v) : nullptr;
-    if (!q) fail(Errc::io, path_ + ": PLY data: expected a number" + (p_ < end_ ? "" : " (the file ends early)"));
+    if (!q) fail(Errc::invalid_mesh, path_ + ": PLY data: expected a number" + (p_ < end_ ? "" : " (the file ends early)"));
     p_ = q;
     return v;
   }
@@ -122,8 +122,8 @@ void read_body(Cursor& in, const std::vector<Element>& elements, ReadResult& r, 
           if (p.name == std::string(1, static_cast<char>('x' + a))) xyz[a] = static_cast<int>(k);
       if (is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) indices = static_cast<int>(k);
     }
-    if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail(Errc::io, path + ": PLY vertex element has no x, y and z properties");
-    if (is_face && indices < 0) fail(Errc::io, path + ": PLY face element has no vertex_indices list");
+    if (is_vertex && (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0)) fail(Errc::invalid_mesh, path + ": PLY vertex element has no x, y and z properties");
+    if (is_face && indices < 0) fail(Errc::invalid_mesh, path + ": PLY face element has no vertex_indices list");
     if (is_vertex) r.mesh.vertices.resize(static_cast<std::size_t>(e.count));
     if (is_face) r.mesh.triangles.reserve(static_cast<std::size_t>(e.count));
     for (long long i = 0; i < e.count; ++i) {
@@ -137,7 +137,7 @@ void read_body(Cursor& in, const std::vector<Element>& elements, ReadResult& r, 
           continue;
         }
         const double n = in.value(p.count_type);
-        if (!(n >= 0 && n <= 1e6)) fail(Errc::io, path + ": PLY " + e.name + " " + std::to_string(i) + ": bad list length");
+        if (!(n >= 0 && n <= 1e6)) fail(Errc::invalid_mesh, path + ": PLY " + e.name + " " + std::to_string(i) + ": bad list length");
         const bool keep = static_cast<int>(k) == indices;
         if (keep) poly.clear();
         for (long long m = 0; m < static_cast<long long>(n); ++m) {
@@ -145,7 +145,7 @@ void read_body(Cursor& in, const std::vector<Element>& elements, ReadResult& r, 
           if (keep) poly.push_back(static_cast<Index>(v >= 0 && v <= 2147483647.0 ? v : -1));
         }
         if (keep) {
-          if (poly.size() < 3) fail(Errc::io, path + ": PLY face " + std::to_string(i) + " has fewer than 3 vertices");
+          if (poly.size() < 3) fail(Errc::invalid_mesh, path + ": PLY face " + std::to_string(i) + " has fewer than 3 vertices");
           add_fan(r.mesh.triangles, poly.data(), poly.size());
         }
       }
@@ -164,9 +164,9 @@ ReadResult read_ply(const std::string& path) {
   Format format = Format::Ascii;
   bool have_format = false;
   std::size_t line = 0;
-  auto header_error = [&](const std::string& what) { fail(Errc::io, path + ":" + std::to_string(line) + ": " + what); };
+  auto header_error = [&](const std::string& what) { fail(Errc::invalid_mesh, path + ":" + std::to_string(line) + ": " + what); };
   while (true) {
-    if (p >= end) fail(Errc::io, path + ": PLY header has no end_header");
+    if (p >= end) fail(Errc::invalid_mesh, path + ": PLY header has no end_header");
     const char* nl = next_line(p, end);
     std::string text(p, static_cast<std::size_t>(nl - 1 - p));
     if (!text.empty() && text.back() == '\r') text.pop_back();
@@ -176,7 +176,7 @@ ReadResult read_ply(const std::string& path) {
     std::string key;
     ls >> key;
     if (line == 1) {
-      if (key != "ply") fail(Errc::io, path + ": not a PLY file (no 'ply' on the first line)");
+      if (key != "ply") fail(Errc::invalid_mesh, path + ": not a PLY file (no 'ply' on the first line)");
       continue;
     }
     if (key == "end_header") break;
@@ -211,7 +211,7 @@ ReadResult read_ply(const std::string& path) {
       header_error("unknown PLY header keyword '" + key + "'");
     }
   }
-  if (!have_format) fail(Errc::io, path + ": PLY header has no format line");
+  if (!have_format) fail(Errc::invalid_mesh, path + ": PLY header has no format line");
   // Counts are checked against the data before anything is allocated for them: a header that
   // promises 2^31 vertices in a 1 kB file is an error, not an attempt at a 48 GB allocation.
   {
@@ -222,7 +222,7 @@ ReadResult read_ply(const std::string& path) {
         record += format == Format::Ascii ? 2.0 : static_cast<double>(pr.list ? size_of(pr.count_type) : size_of(pr.type));
       least += record * static_cast<double>(e.count);
     }
-    if (least > static_cast<double>(end - p) + 1) fail(Errc::io, path + ": PLY data is shorter than the header's element counts need (truncated file?)");
+    if (least > static_cast<double>(end - p) + 1) fail(Errc::invalid_mesh, path + ": PLY data is shorter than the header's element counts need (truncated file?)");
   }
   ReadResult r;
   if (format == Format::Ascii) {
@@ -240,8 +240,8 @@ ReadResult read_ply(const std::string& path) {
   for (std::size_t t = 0; t < r.mesh.triangles.size(); ++t)
     for (Index v : r.mesh.triangles[t])
       if (v < 0 || static_cast<std::size_t>(v) >= nv)
-        fail(Errc::io, path + ": PLY face " + std::to_string(t) + " has a vertex index out of range [0, " + std::to_string(nv) + ")");
-  if (r.mesh.triangles.empty()) fail(Errc::io, path + ": no faces found");
+        fail(Errc::invalid_mesh, path + ": PLY face " + std::to_string(t) + " has a vertex index out of range [0, " + std::to_string(nv) + ")");
+  if (r.mesh.triangles.empty()) fail(Errc::invalid_mesh, path + ": no faces found");
   return r;
 }
 

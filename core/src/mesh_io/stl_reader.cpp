@@ -33,7 +33,7 @@ ReadResult read_stl(const std::string& path, double merge_tolerance) {
     }
   } else {
     if (file.size() < 5 || std::memcmp(data, "solid", 5) != 0)
-      fail(Errc::io, path + ": neither ASCII STL (no 'solid') nor binary STL (size does not match the triangle count)");
+      fail(Errc::invalid_mesh, path + ": neither ASCII STL (no 'solid') nor binary STL (size does not match the triangle count)");
     const char* p = data;
     const char* const end = file.end();
     corners.reserve(file.size() / 80);  // an ASCII facet takes about 250 bytes for its 3 corners
@@ -45,12 +45,12 @@ ReadResult read_stl(const std::string& path, double merge_tolerance) {
       for (int k = 0; k < 3; ++k) {
         while (q < end && (is_blank(*q) || *q == '\n')) ++q;
         q = scan_double(q, end, c[k]);
-        if (!q) fail(Errc::io, path + ": bad vertex coordinate in ASCII STL");
+        if (!q) fail(Errc::invalid_mesh, path + ": bad vertex coordinate in ASCII STL");
       }
       corners.push_back(c);
       p = q;
     }
-    if (corners.size() % 3) fail(Errc::io, path + ": ASCII STL vertex count is not a multiple of 3");
+    if (corners.size() % 3) fail(Errc::invalid_mesh, path + ": ASCII STL vertex count is not a multiple of 3");
   }
   return merge_corners(corners, merge_tolerance, path);
 }

@@ -55,11 +55,11 @@ class Table {
 
 ReadResult merge_corners(const std::vector<Vec3>& corners, double tol, const std::string& path) {
   ReadResult r;
-  if (corners.empty()) fail(Errc::io, path + ": no triangles found");
-  if (corners.size() > 0x7fffffffULL) fail(Errc::io, path + ": too many triangles");
+  if (corners.empty()) fail(Errc::invalid_mesh, path + ": no triangles found");
+  if (corners.size() > 0x7fffffffULL) fail(Errc::invalid_mesh, path + ": too many triangles");
   Vec3 lo = corners[0], hi = corners[0];
   for (const Vec3& c : corners) {
-    if (!c.allFinite()) fail(Errc::io, path + ": a vertex has a NaN or infinite coordinate");
+    if (!c.allFinite()) fail(Errc::invalid_mesh, path + ": a vertex has a NaN or infinite coordinate");
     lo = lo.cwiseMin(c);
     hi = hi.cwiseMax(c);
   }
