@@ -85,6 +85,7 @@ int run_flatten(const std::vector<std::string>& argv) {
   if (!s.quiet && outcome.exit_code != kExitCancelled && (outcome.snap.has_result || outcome.topology_built))
     print_summary(job.input, outcome);
   std::fflush(stdout);
+  for (const std::string& w : outcome.warnings) std::fprintf(stderr, "wefm: warning: %s\n", w.c_str());
   if (outcome.exit_code == kExitSolver && outcome.snap.has_result)
     std::fprintf(stderr, "wefm: warning: %s\n", outcome.error.c_str());
   else if (outcome.exit_code != kExitOk)

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <chrono>
+#include <cstdio>
 #include <memory>
 
 #include "domain_picture.hpp"
@@ -203,6 +204,13 @@ class Runner {
     }
     if (snapshot_result(face_.get(), requested_, s_.options.default_edge_mode, out_.snap) != WEFM_OK)
       return fail(kExitSolver, job_.input + ": reading the result: " + face_error());
+    const double s_asked = s_.options.s, s_got = out_.snap.report.s;
+    if (out_.snap.has_result && s_asked > 0 && s_got < s_asked - 1e-12) {
+      // A valid layout at a smaller s beats an invalid one at the s asked; say so, it is not what was asked.
+      char buf[160];
+      std::snprintf(buf, sizeof buf, ": the layout written is at s = %g: no valid layout was reached at s = %g", s_got, s_asked);
+      out_.warnings.push_back(job_.input + buf);
+    }
     if (st == WEFM_ERROR_NOT_CONVERGED) {
       const std::string msg = job_.input + ": not converged: " + face_error();
       if (!out_.snap.has_result) return fail(kExitSolver, msg);
@@ -233,7 +241,7 @@ class Runner {
         !done(write_topology_file(s_.write_topology_path, snap.topology, error), "topology", s_.write_topology_path))
       return;
     if (!s_.report_path.empty()) {
-      ReportContext ctx{job_.input, out_.outputs, out_.exit_code, out_.error, out_.time};
+      ReportContext ctx{job_.input, out_.outputs, out_.exit_code, out_.error, out_.time, out_.warnings};
       ctx.timings.total = ctx.timings.read + ctx.timings.setup + ctx.timings.solve;  // writing not yet done
       if (!done(write_report_json(s_.report_path, ctx, snap, error), "report", s_.report_path)) return;
     }

@@ -36,6 +36,7 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
   j["status"] = ctx.exit_code == kExitOk ? "ok" : ctx.exit_code == kExitSolver ? "not_converged" : "failed";
   j["exit_code"] = ctx.exit_code;
   j["message"] = ctx.message;
+  j["warnings"] = ctx.warnings;
   j["mesh"] = {{"vertices", m.vertices},
                {"triangles", m.triangles},
                {"merged_vertices", m.merged_vertices},

@@ -16,6 +16,7 @@ struct ReportContext {
   int exit_code = 0;
   std::string message;
   Timings timings;
+  std::vector<std::string> warnings;
 };
 
 int write_report_json(const std::string& path, const ReportContext& ctx, const FaceSnapshot& snap, std::string& error);
