@@ -283,10 +283,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
     keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
-    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, std::move(K), sub, keep, opt.backend);  // K is not needed after
     // The s = 0 factor becomes the continuation's preconditioner, refactorised in place; with
     // substituted seams the continuation factorises its own pattern: do not hold two factors.
+    // The caches (a copy of K among them) go first, before the continuation allocates.
     kkt.release_caches();
+    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend);  // takes K over (K is not needed after)
     if (!gn.share_factor(kkt.factor(), kkt.split_use(0), kkt.split_use(1))) kkt.release();
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
     gn.set_scale_center(gauge.center);
