@@ -374,10 +374,10 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
     }
     factored_ = true;
   };
-  // Refactorise when the last step needed many iterations (a factorisation costs about ten
-  // solves at 1M triangles). A count, not a timing: results must not depend on machine load.
-  bool fresh = false;
-  if (!factored_ || last_pcg_ > kMaxStaleIterations) {
+  // Refactorise when the factor has gone stale (kRefactorExtra). A count, not a timing: results
+  // must not depend on machine load.
+  bool fresh = baseline_pending_;  // refactorised at the end of the last step: as good as fresh
+  if (!factored_ || (!fresh && last_pcg_ > fresh_pcg_ + kRefactorExtra)) {
     refactor();
     fresh = true;
   }
@@ -405,22 +405,34 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
   };
   Eigen::VectorXd r(nr), zr(nr), p(nr), q(nr);
   Eigen::MatrixXd zr_m;
-  for (;;) {
-    auto precondition = [&](const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
-      this->precondition(rr, zr_m);
-      y = zr_m.col(0);
-      if (C.rows() > 0) y -= W * Sc.solve(C * y);
-    };
-    delta.setZero(nr);
-    last_pcg_ = 0;
-    r = -g;
+  double rz_stale = 0;
+  auto precondition = [&](const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
+    this->precondition(rr, zr_m);
+    y = zr_m.col(0);
+    if (C.rows() > 0) y -= W * Sc.solve(C * y);
+  };
+  delta.setZero(nr);
+  r = -g;
+  last_pcg_ = 0;
+  double target = 0;  // on r.z, relative to its start: kCgTolerance
+  for (int phase = 0;; ++phase) {
     precondition(r, zr);
     p = zr;
     double rz = r.dot(zr);
-    const double rz0 = rz;
-    const double target = kCgTolerance * rz0;
-    bool converged = rz0 <= 0;
-    for (int it = 0; it < kMaxCgIterations && !converged; ++it) {
+    if (phase == 0 || !(rz_stale > 0)) {
+      target = kCgTolerance * rz;
+    } else {
+      // A refactorisation mid-step: go on from delta (every iterate keeps C delta = 0) with the
+      // reduction still missing carried over to the new preconditioner's norm.
+      target *= rz / rz_stale;
+    }
+    bool converged = rz <= target;
+    // A stale factor gets as many iterations as the last fresh one needed plus kRefactorExtra,
+    // then it is refactorised (what the extra iterations would cost).
+    const bool baseline = phase == 0 && fresh;  // this count is the fresh factor's
+    const int limit = baseline ? kMaxCgIterations : std::min(kMaxCgIterations, fresh_pcg_ + kRefactorExtra);
+    int its = 0;
+    for (; its < limit && !converged; ++its) {
       apply(p, q);
       const double pq = p.dot(q);
       if (!(pq > 0)) break;
@@ -430,18 +442,28 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
       precondition(r, zr);
       const double rz_new = r.dot(zr);
       ++pcg_iterations_;
-      last_pcg_ = it + 1;
+      ++last_pcg_;
       converged = !(rz_new > target);
       p = zr + (rz_new / rz) * p;
       rz = rz_new;
     }
-    if (!delta.allFinite()) delta.setZero(nr);
+    rz_stale = rz;
+    if (!delta.allFinite()) {  // start again from zero
+      delta.setZero(nr);
+      r = -g;
+      rz_stale = 0;
+    }
+    if (baseline) {
+      fresh_pcg_ = its;
+      baseline_pending_ = false;
+    }
     if (converged) return true;
     // Every CG iterate lowers the quadratic model, so an unfinished one is still a descent
-    // direction (the line search sizes it); a stale factor gets one refactorisation first.
+    // direction (the line search sizes it); a stale factor is refactorised first.
     if (fresh) return delta.squaredNorm() > 0;
     refactor();
     fresh = true;
+    baseline_pending_ = true;  // the next step measures the new factor
     project();
   }
 }
