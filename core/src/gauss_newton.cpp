@@ -94,6 +94,11 @@ std::vector<Complex> values_on(const SpMatC& pattern, const SpMatC& A) {
   return out;
 }
 
+// Column j of a real matrix (Re, Im interleaved) as a complex vector.
+inline Eigen::Map<VectorXc> as_complex_col(Eigen::MatrixXd& m, Index j) {
+  return Eigen::Map<VectorXc>(reinterpret_cast<Complex*>(m.col(j).data()), m.rows() / 2);
+}
+
 // conj(x) y
 inline Complex cmul(Complex x, Complex y) {
   return Complex(x.real() * y.real() + x.imag() * y.imag(), x.real() * y.imag() - x.imag() * y.real());
@@ -373,6 +378,7 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
       chol_->factorize(Kd);
     }
     factored_ = true;
+    units_valid_ = false;
   };
   // Refactorise when the factor has gone stale (kRefactorExtra). A count, not a timing: results
   // must not depend on machine load.
@@ -385,7 +391,39 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
   Eigen::FullPivLU<Eigen::MatrixXd> Sc;
   auto project = [&] {
     if (C.rows() == 0) return;
-    this->precondition(C.transpose(), W);
+    // The unknowns the constraint rows touch (the gauge's two uses, usually).
+    std::vector<Index> touched;
+    for (Index k = 0; k < nr / 2; ++k)
+      for (Index j = 0; j < C.rows(); ++j)
+        if (C(j, 2 * k) != 0.0 || C(j, 2 * k + 1) != 0.0) {
+          touched.push_back(k);
+          break;
+        }
+    if (touched.size() > kMaxCachedUnits) {
+      this->precondition(C.transpose(), W);
+    } else {
+      // W = M^{-1} C^T from M^{-1} e_k, kept while the factor is: the preconditioner is
+      // complex-linear, so a row's column is a complex combination of those (a solve per step
+      // saved; the rows' direction changes with the layout, their unknowns do not).
+      if (touched != unit_uses_) {
+        unit_uses_ = touched;
+        units_valid_ = false;
+      }
+      if (!units_valid_) {
+        Eigen::MatrixXd E = Eigen::MatrixXd::Zero(nr, static_cast<Index>(touched.size()));
+        for (size_t q = 0; q < touched.size(); ++q) E(2 * touched[q], static_cast<Index>(q)) = 1.0;
+        this->precondition(E, units_);
+        units_valid_ = true;
+      }
+      W.setZero(nr, C.rows());
+      for (Index j = 0; j < C.rows(); ++j)
+        for (size_t q = 0; q < touched.size(); ++q) {
+          const Index k = touched[q];
+          const Complex c(C(j, 2 * k), C(j, 2 * k + 1));
+          if (c == Complex(0, 0)) continue;
+          as_complex_col(W, j) += c * as_complex_col(units_, static_cast<Index>(q));
+        }
+    }
     Sc.compute(C * W);
   };
   project();

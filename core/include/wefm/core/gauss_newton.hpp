@@ -160,6 +160,11 @@ class GaussNewton {
   Eigen::MatrixXcd Wx_;    // K_PP^{-1} K_PX
   Eigen::Matrix2cd Sx_;    // K_XX - K_XP K_PP^{-1} K_PX
   Eigen::MatrixXcd pre_b_, pre_x_;  // preconditioner buffers (kept: no allocation per CG iteration)
+  // M^{-1} e_k for the unknowns k of the constraint rows (real form), while the factor is unchanged.
+  static constexpr size_t kMaxCachedUnits = 8;
+  std::vector<Index> unit_uses_;
+  Eigen::MatrixXd units_;
+  bool units_valid_ = false;
   double lambda_ = 1e-6;
   bool factored_ = false;
   int last_pcg_ = 0;   // iterations of the last step's conjugate gradients
