@@ -140,6 +140,10 @@ class GaussNewton {
   std::vector<int> btb_slot_;  // B^H B (constant: the boundary term is complex-linear) in Kc_'s pattern
   std::vector<Complex> btb_;
   std::vector<double> len_;    // UV base length per half-edge at the last linearisation
+  // PerHalfEdge: per triangle, the offset of entry (a, b) of its block in column b of Kc_
+  // (kFarOffset: found by search, for columns longer than a byte can index).
+  std::vector<std::uint8_t> block_offset_;
+  static constexpr std::uint8_t kFarOffset = 255;
   std::vector<LinearRow> rows_;
   LinearRow gauge_row_;
   Complex center_{0, 0};
