@@ -135,6 +135,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
   const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
   PartitionedKKT kkt(opt.backend);
+  kkt.factor().set_threads(opt.threads);
   stage.check(0.1, "factorise");
   kkt.set_matrix(K, split.first, split.second);
 
@@ -288,6 +289,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     // The caches (a copy of K among them) go first, before the continuation allocates.
     kkt.release_caches();
     GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend);  // takes K over (K is not needed after)
+    gn.own_factor().set_threads(opt.threads);
     if (!gn.share_factor(kkt.factor(), kkt.split_use(0), kkt.split_use(1))) kkt.release();
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
     gn.set_scale_center(gauge.center);

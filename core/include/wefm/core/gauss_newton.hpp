@@ -98,6 +98,7 @@ class GaussNewton {
 
   // Analyses and factorisations of the factor of its own (a shared factor counts in its owner).
   FactorCounters& counters() { return own_chol_.counters(); }
+  SparseCholesky& own_factor() { return own_chol_; }
   std::int64_t pcg_iterations() const { return pcg_iterations_; }
   double time_assembly() const { return t_assembly_; }
 
