@@ -288,7 +288,7 @@ void GaussNewton::linearise_per_use(const VectorXc& z, double s, VectorXc& g, do
   }
 }
 
-double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change) const {
+double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, ScaleSums* sums) const {
   // rho = L / |d| (1 where either is 0), against its value at the linearisation (len_).
   double change = 0;
   auto rho_ratio = [&](size_t h, double len) {
@@ -298,8 +298,14 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change) c
     change = std::max(change, std::abs(after / before - 1.0));
   };
   double e = 0;
+  ScaleSums ps;
   if (form_ == Residual::PerUse) {
-    for_each_row(z, s, [&](Complex r, const Entry*, int) { e += std::norm(r); });
+    for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
+      e += std::norm(p - q);
+      ps.P += std::norm(p);
+      ps.Q += (std::conj(p) * q).real();
+      ps.R += std::norm(q);
+    });
     if (rho_change)
       for (size_t h = 0; h < len_.size(); ++h)
         rho_ratio(h, std::abs(z[tp_.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))]] - z[tp_.corner_use[h]]));
@@ -316,20 +322,39 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change) c
         const Complex r = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d - Complex(-mag * d.imag(), mag * d.real()));
         e += std::norm(r);
         if (rho_change) rho_ratio(h, len);
+        if (sums) {
+          const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
+          const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());
+          ps.P += std::norm(p);
+          ps.Q += p.real() * q.real() + p.imag() * q.imag();
+          ps.R += std::norm(q);
+        }
       }
     }
   }
-  if (B_ && B_->nonZeros()) e += ((*B_) * z).squaredNorm();
+  if (B_ && B_->nonZeros()) {
+    const double eb = ((*B_) * z).squaredNorm();
+    e += eb;
+    ps.P += eb;
+  }
   if (rho_change) *rho_change = change;
+  if (sums) *sums = ps;
   return e;
 }
 
-double GaussNewton::energy(const VectorXc& z, double s) const { return energy_at(z, s, nullptr); }
+double GaussNewton::energy(const VectorXc& z, double s) const { return energy_at(z, s, nullptr, nullptr); }
 
-double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) const {
+double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) {
   // E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R; dE/da = 0 <=> P t^2 - (2-s) Q t + (1-s) R = 0, t = a^s.
+  // The sums at z come from the line search that accepted z, when it did (one pass fewer).
   double P = 0, Q = 0, R = 0;
-  if (form_ == Residual::PerUse) {
+  const bool known = accepted_sums_valid_;
+  if (known) {
+    P = accepted_sums_.P;
+    Q = accepted_sums_.Q;
+    R = accepted_sums_.R;
+    accepted_sums_valid_ = false;
+  } else if (form_ == Residual::PerUse) {
     for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
       P += std::norm(p);
       Q += (std::conj(p) * q).real();
@@ -352,7 +377,7 @@ double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) const {
       }
     }
   }
-  if (B_ && B_->nonZeros()) P += ((*B_) * z).squaredNorm();
+  if (!known && B_ && B_->nonZeros()) P += ((*B_) * z).squaredNorm();
   energy_after = P - 2 * Q + R;
   if (!(P > 0) || s <= 0) return 1.0;
   const double b = -(2 - s) * Q, c = (1 - s) * R, disc = b * b - 4 * P * c;
@@ -605,10 +630,12 @@ void GaussNewton::precondition(const Eigen::MatrixXd& r, Eigen::MatrixXd& out) {
 }
 
 double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
+  accepted_sums_valid_ = false;
   double t0 = now();
   VectorXc g;
   double e0 = 0;
   linearise(z, s, g, e0);
+  last_e0_ = e0;
   // Without seams Kc_ and S_ are used as they are; with seams the reduced parts are
   // Kr = P^H Kc P and Sr = P^H S conj(P) (dz = P dy: H dz = Kc P dy + S conj(P) conj(dy)).
   SpMatC Kr;
@@ -682,9 +709,12 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     for (double t = 1.0; t >= 1.0 / 64; t *= 0.5) {
       const VectorXc zt = z + t * dz;
       double change = 0;
-      const double et = energy_at(zt, s, &change);
+      ScaleSums sums;
+      const double et = energy_at(zt, s, &change, &sums);
       if (std::isfinite(et) && et <= e0 + 1e-4 * t * predicted) {
         z = zt;
+        accepted_sums_ = sums;
+        accepted_sums_valid_ = true;
         energy_out = et;
         lambda_ = t == 1.0 ? std::max(lambda_ * 0.1, 1e-10) : lambda_;
         return change;

@@ -65,7 +65,7 @@ class GaussNewton {
 
   // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists)
   // and writes the energy after it (E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R: no second pass).
-  double rescale(VectorXc& z, double s, double& energy_after) const;
+  double rescale(VectorXc& z, double s, double& energy_after);
 
   // Iterates from z (updated in place) at s until the rho change falls below tol or max_it.
   // `check` is called once per iteration (progress, cancellation).
@@ -74,10 +74,11 @@ class GaussNewton {
   template <class Check>
   GaussNewtonReport run(VectorXc& z, double s, double tol, int max_it, bool free_scale, Check&& check) {
     GaussNewtonReport rep;
-    double e_prev = energy(z, s);
+    double e_prev = 0;
     for (int it = 0; it < max_it; ++it) {
       check(it);
       rep.rho_change = step(z, s, rep.energy);
+      if (it == 0) e_prev = last_e0_;  // the energy at the start, from the first linearisation
       if (free_scale) rep.rho_change = std::max(rep.rho_change, std::abs(rescale(z, s, rep.energy) - 1.0));
       rep.iterations = it + 1;
       // Converged when rho settles, or when the energy no longer decreases (a flat valley where
@@ -114,8 +115,13 @@ class GaussNewton {
   // measured.
   void linearise(const VectorXc& z, double s, VectorXc& g, double& energy);
   void linearise_per_use(const VectorXc& z, double s, VectorXc& g, double& energy);
-  // Energy at z; with `rho_change`, also the max relative rho change against len_.
-  double energy_at(const VectorXc& z, double s, double* rho_change) const;
+  // The energy's parts along z -> a z: P (degree 1), Q (cross), R (altitude, degree 1 - s).
+  struct ScaleSums {
+    double P = 0, Q = 0, R = 0;
+  };
+  // Energy at z; with `rho_change`, also the max relative rho change against len_; with `sums`,
+  // the parts rescale needs.
+  double energy_at(const VectorXc& z, double s, double* rho_change, ScaleSums* sums) const;
   // Position of row a in column b of K's pattern.
   int slot(Index a, Index b) const;
   template <class F>
@@ -170,6 +176,9 @@ class GaussNewton {
   std::vector<Index> unit_uses_;
   Eigen::MatrixXd units_;
   bool units_valid_ = false;
+  double last_e0_ = 0;         // energy at the last linearisation
+  ScaleSums accepted_sums_;  // at the layout the last line search accepted, until rescale uses them
+  bool accepted_sums_valid_ = false;
   double lambda_ = 1e-6;
   bool factored_ = false;
   int last_pcg_ = 0;   // iterations of the last step's conjugate gradients
