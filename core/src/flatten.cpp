@@ -135,6 +135,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
   const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
   PartitionedKKT kkt(opt.backend);
+  kkt.factor().set_threads(opt.threads);
   stage.check(0.1, "factorise");
   kkt.set_matrix(K, split.first, split.second);
 
@@ -295,10 +296,12 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     std::vector<LinearRow> keep;
     for (const LinearRow& r : caller) keep.push_back(reduce_row(sub, r));
     keep.insert(keep.end(), sub.leftover.begin(), sub.leftover.end());
-    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, std::move(K), sub, keep, opt.backend, opt.min_beta);  // K is not needed after
     // The s = 0 factor becomes the continuation's preconditioner, refactorised in place; with
     // substituted seams the continuation factorises its own pattern: do not hold two factors.
+    // The caches (a copy of K among them) go first, before the continuation allocates.
     kkt.release_caches();
+    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend, opt.min_beta);  // takes K over (K is not needed after)
+    gn.own_factor().set_threads(opt.threads);
     if (!gn.share_factor(kkt.factor(), kkt.split_use(0), kkt.split_use(1))) kkt.release();
     if (gauge.vector) gn.set_gauge_row(reduce_row(sub, vec));
     gn.set_scale_center(gauge.center);

@@ -1,13 +1,11 @@
 #include "wefm/core/gauss_newton.hpp"
 
 #include <Eigen/Dense>
-#include <array>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <cstdio>
-#include <cstdlib>
 
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
@@ -17,14 +15,6 @@ namespace wefm {
 namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-// Real 2x2 block (row-major) of dz -> l dz + m conj(dz) acting on (Re dz, Im dz).
-void real_block(const Entry& e, double* J) {
-  J[0] = e.l.real() + e.m.real();
-  J[1] = -e.l.imag() + e.m.imag();
-  J[2] = e.l.imag() + e.m.imag();
-  J[3] = e.l.real() - e.m.real();
-}
 
 void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
   for (int j = 0; j < ne; ++j)
@@ -36,35 +26,125 @@ void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
   es[ne++] = {use, l, m};
 }
 
+// (L / |d|)^s without pow for the usual exponents (pow was 6% of a 1M-triangle s = 1 solve).
+inline double ratio_pow(double ratio, double s) {
+  if (s == 1.0) return ratio;
+  if (s == 2.0) return ratio * ratio;
+  if (s == 0.0) return 1.0;
+  return std::pow(ratio, s);
+}
+
+// The real vector (Re, Im interleaved) of a complex one, and back: same memory.
+inline Eigen::Map<VectorXc> as_complex(Eigen::VectorXd& v) {
+  return Eigen::Map<VectorXc>(reinterpret_cast<Complex*>(v.data()), v.size() / 2);
+}
+inline Eigen::Map<const VectorXc> as_complex(const Eigen::VectorXd& v) {
+  return Eigen::Map<const VectorXc>(reinterpret_cast<const Complex*>(v.data()), v.size() / 2);
+}
+
+// One half-edge of the per-half-edge residual: its weighted prediction error r = p - q (p the
+// part of degree 1 in z, q the altitude term of degree 1 - s) and its derivative l dz + m conj(dz)
+// at the triangle's local corners j (base start), j1 (base end), j2 (opposite).
+struct HalfEdgeRow {
+  Complex p, q;
+  Complex l[3], m[3];  // by local corner
+  double len;          // |d|
+};
+
+inline void half_edge_row(const Coefficients& c, size_t h, double sw, const Complex zc[3], int j, double s, HalfEdgeRow& row) {
+  const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  const Complex d = zc[j1] - zc[j];
+  const double len = std::sqrt(std::norm(d));
+  const double ad = std::max(len, 1e-12);
+  const Complex u = len > 0 ? d / len : Complex(1, 0);
+  const double mag = c.beta[h] * ratio_pow(c.length[h] / ad, s);
+  const double alpha = c.alpha[h];
+  row.p = sw * (zc[j2] - zc[j] - alpha * d);
+  row.q = sw * Complex(-mag * d.imag(), mag * d.real());  // sw i mag d
+  const Complex lg(0, mag * (1.0 - 0.5 * s));
+  const Complex mg = Complex(0, -mag * 0.5 * s) * u * u;
+  row.l[j2] = sw;
+  row.m[j2] = 0.0;
+  row.l[j] = sw * (-(1.0 - alpha) + lg);
+  row.m[j] = sw * mg;
+  row.l[j1] = sw * (-alpha - lg);
+  row.m[j1] = -sw * mg;
+  row.len = len;
+}
+
+// Position of the diagonal entry of column i.
+inline int diagonal_slot(const SpMatC& A, Index i) {
+  const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[i];
+  const int* end = A.innerIndexPtr() + A.outerIndexPtr()[i + 1];
+  const int* p = std::lower_bound(begin, end, static_cast<int>(i));
+  if (p == end || *p != i) fail(Errc::internal, "Gauss-Newton matrix without a diagonal entry");
+  return static_cast<int>(p - A.innerIndexPtr());
+}
+
+// Values of A on `pattern`, which holds A's pattern.
+std::vector<Complex> values_on(const SpMatC& pattern, const SpMatC& A) {
+  std::vector<Complex> out(static_cast<size_t>(pattern.nonZeros()), Complex(0, 0));
+  for (Index col = 0; col < A.outerSize(); ++col) {
+    const int* begin = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col];
+    const int* end = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col + 1];
+    for (SpMatC::InnerIterator it(A, col); it; ++it) {
+      const int* p = std::lower_bound(begin, end, static_cast<int>(it.row()));
+      if (p == end || *p != it.row()) fail(Errc::internal, "Gauss-Newton matrix outside its pattern");
+      out[static_cast<size_t>(p - pattern.innerIndexPtr())] += it.value();
+    }
+  }
+  return out;
+}
+
+// Column j of a real matrix (Re, Im interleaved) as a complex vector.
+inline Eigen::Map<VectorXc> as_complex_col(Eigen::MatrixXd& m, Index j) {
+  return Eigen::Map<VectorXc>(reinterpret_cast<Complex*>(m.col(j).data()), m.rows() / 2);
+}
+
+// conj(x) y
+inline Complex cmul(Complex x, Complex y) {
+  return Complex(x.real() * y.real() + x.imag() * y.imag(), x.real() * y.imag() - x.imag() * y.real());
+}
+
 }  // namespace
 
-GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC K,
+GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC& K,
                          const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta)
     : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), barrier_(tp, c, min_beta), rows_(std::move(rows)),
       own_chol_(backend) {
   const Index n = tp.use_count;
   K.makeCompressed();
-  // H_'s pattern: each entry of K becomes a 2x2 block, written column by column in place (the
-  // triplet route held three copies at once and set the peak memory of the whole solve).
-  H_.resize(2 * n, 2 * n);
-  H_.resizeNonZeros(4 * K.nonZeros());
-  int* outer = H_.outerIndexPtr();
-  int* inner = H_.innerIndexPtr();
-  outer[0] = 0;
-  for (Index col = 0; col < K.outerSize(); ++col) {
-    const int begin = K.outerIndexPtr()[col], end = K.outerIndexPtr()[col + 1];
-    for (int b = 0; b < 2; ++b) {
-      int pos = outer[2 * col + b];
-      for (int v = begin; v < end; ++v) {
-        inner[pos++] = 2 * K.innerIndexPtr()[v];
-        inner[pos++] = 2 * K.innerIndexPtr()[v] + 1;
-      }
-      outer[2 * col + b + 1] = pos;
-    }
+  Kc_.swap(K);
+  S_.assign(static_cast<size_t>(Kc_.nonZeros()), Complex(0, 0));
+  if (form == Residual::PerHalfEdge) {
+    // Each row is weighted by sqrt(w) (per use, by w): keep only the one the form needs.
+    for (double& w : w_) w = std::sqrt(w);
+    sw_ = std::move(w_);
+    w_ = {};
   }
-  std::fill(H_.valuePtr(), H_.valuePtr() + H_.nonZeros(), 0.0);
-  Kc_ = std::move(K);
-  if (B_) B_rows_ = *B_;
+  len_.assign(c.alpha.size(), 0.0);
+  if (form == Residual::PerHalfEdge) {
+    // Where each triangle's 3x3 block lands, as offsets in its columns (a byte each: 9 MB at 1M
+    // triangles; the binary searches took 15% of the linearisation at 1M triangles).
+    const size_t nt = tp.corner_use.size() / 3;
+    block_offset_.resize(9 * nt);
+    for (size_t t = 0; t < nt; ++t)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const Index ua = tp.corner_use[3 * t + static_cast<size_t>(a)], ub = tp.corner_use[3 * t + static_cast<size_t>(b)];
+          const int o = slot(ua, ub) - Kc_.outerIndexPtr()[ub];
+          block_offset_[9 * t + static_cast<size_t>(3 * a + b)] = static_cast<std::uint8_t>(o < kFarOffset ? o : kFarOffset);
+        }
+  }
+  if (B_ && B_->nonZeros()) {
+    SpMatC btb = SpMatC(B_->adjoint()) * (*B_);
+    btb.makeCompressed();
+    for (Index col = 0; col < btb.outerSize(); ++col)
+      for (SpMatC::InnerIterator it(btb, col); it; ++it) {
+        btb_slot_.push_back(slot(static_cast<Index>(it.row()), col));
+        btb_.push_back(it.value());
+      }
+  }
   if (form == Residual::PerUse) {
     // Rows per use: the half-edges opposite each use.
     opposite_.assign(static_cast<size_t>(n), {});
@@ -74,67 +154,43 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
   identity_ = sub.reduced == n;
   if (identity_)
     for (Index u = 0; u < n; ++u) identity_ = identity_ && sub.use_to_reduced[static_cast<size_t>(u)] == u;
-  if (!identity_) {
-    std::vector<Eigen::Triplet<double>> pt;
-    for (Index col = 0; col < sub.P.outerSize(); ++col)
-      for (SpMatC::InnerIterator it(sub.P, col); it; ++it) {
-        const Complex v = it.value();
-        const Index r = static_cast<Index>(it.row());
-        pt.emplace_back(2 * r, 2 * col, v.real());
-        pt.emplace_back(2 * r, 2 * col + 1, -v.imag());
-        pt.emplace_back(2 * r + 1, 2 * col, v.imag());
-        pt.emplace_back(2 * r + 1, 2 * col + 1, v.real());
-      }
-    P_real_.resize(2 * n, 2 * sub.reduced);
-    P_real_.setFromTriplets(pt.begin(), pt.end());
-    P_real_.makeCompressed();
-  }
+}
+
+int GaussNewton::slot(Index a, Index b) const {
+  const int* begin = Kc_.innerIndexPtr() + Kc_.outerIndexPtr()[b];
+  const int* end = Kc_.innerIndexPtr() + Kc_.outerIndexPtr()[b + 1];
+  const int* p = std::lower_bound(begin, end, static_cast<int>(a));
+  if (p == end || *p != a) fail(Errc::internal, "Gauss-Newton block outside the energy pattern");
+  return static_cast<int>(p - Kc_.innerIndexPtr());
 }
 
 template <class F>
 void GaussNewton::for_each_row(const VectorXc& z, double s, F&& f) const {
   for_each_row_split(z, s, [&](Complex p, Complex q, const Entry* es, int ne) { f(p - q, es, ne); });
-  // The shape barrier is scale-free: it belongs here and not in the split rows that rescale uses.
-  std::array<Complex, 3> l;
-  double r = 0;
-  Entry es[3];
-  for (size_t t = 0; t < barrier_.triangles(); ++t) {
-    const Index a = tp_.corner_use[3 * t], b = tp_.corner_use[3 * t + 1], c = tp_.corner_use[3 * t + 2];
-    if (!barrier_.row(t, z[a], z[b], z[c], r, l)) continue;
-    es[0] = {a, l[0], std::conj(l[0])};
-    es[1] = {b, l[1], std::conj(l[1])};
-    es[2] = {c, l[2], std::conj(l[2])};
-    f(Complex(r, 0), es, 3);
-  }
 }
 
 template <class F>
 void GaussNewton::for_each_row_split(const VectorXc& z, double s, F&& f) const {
+  // The general form (both residuals): rows as lists of entries. The per-half-edge residual has
+  // its own loops below, a triangle at a time.
   const size_t nh = c_.alpha.size();
-  // One half-edge's prediction error sw (z_i - z1 - alpha d - g(d)), g(d) = i beta L^s |d|^-s d.
-  // p: the part of degree 1 in z, q: the altitude term g of degree 1 - s.
   auto half_edge = [&](size_t h, double sw, Complex& p, Complex& q, Entry* es, int& ne) {
-    const Index hi = static_cast<Index>(h);
-    const Index i = tp_.corner_use[static_cast<size_t>(HalfEdges::prev(hi))];
-    const Index i1 = tp_.corner_use[h], i2 = tp_.corner_use[static_cast<size_t>(HalfEdges::next(hi))];
-    const Complex d = z[i2] - z[i1];
-    const double ad = std::max(std::abs(d), 1e-12);
-    const Complex u = std::abs(d) > 0 ? d / std::abs(d) : Complex(1, 0);
-    const double mag = c_.beta[h] * (s == 0 ? 1.0 : std::pow(c_.length[h] / ad, s));
-    const Complex g = Complex(0, mag) * d;
-    const Complex lg = Complex(0, mag * (1.0 - 0.5 * s)), mg = Complex(0, -mag * 0.5 * s) * u * u;
-    p += sw * (z[i] - z[i1] - c_.alpha[h] * d);
-    q += sw * g;
-    add_entry(es, ne, i, sw, 0.0);
-    add_entry(es, ne, i1, sw * (-(1.0 - c_.alpha[h]) + lg), sw * mg);
-    add_entry(es, ne, i2, sw * (-c_.alpha[h] - lg), -sw * mg);
+    const Index j = static_cast<Index>(h % 3);
+    const size_t t3 = h - static_cast<size_t>(j);
+    const Index u[3] = {tp_.corner_use[t3], tp_.corner_use[t3 + 1], tp_.corner_use[t3 + 2]};
+    const Complex zc[3] = {z[u[0]], z[u[1]], z[u[2]]};
+    HalfEdgeRow row;
+    half_edge_row(c_, h, sw, zc, j, s, row);
+    p += row.p;
+    q += row.q;
+    for (int a : {static_cast<int>((j + 2) % 3), static_cast<int>(j), static_cast<int>((j + 1) % 3)}) add_entry(es, ne, u[a], row.l[a], row.m[a]);
   };
   Entry es[64];
   if (form_ == Residual::PerHalfEdge) {
     for (size_t h = 0; h < nh; ++h) {
       Complex p{0, 0}, q{0, 0};
       int ne = 0;
-      half_edge(h, std::sqrt(w_[h]), p, q, es, ne);
+      half_edge(h, sw_[h], p, q, es, ne);
       f(p, q, es, ne);
     }
   } else {
@@ -150,80 +206,219 @@ void GaussNewton::for_each_row_split(const VectorXc& z, double s, F&& f) const {
   }
 }
 
-void GaussNewton::add_block(Index a, Index b, const double* Ja, const double* Jb, const Entry& ea, const Entry& eb) {
-  // Kc(a, b) += conj(l_a) l_b + m_a conj(m_b): |sum l dz|^2 + |sum m conj(dz)|^2, the real form
-  // without the cross terms between the complex-linear and anti-linear parts (small below s = 2).
-  {
-    const int* begin = Kc_.innerIndexPtr() + Kc_.outerIndexPtr()[b];
-    const int* end = Kc_.innerIndexPtr() + Kc_.outerIndexPtr()[b + 1];
-    const int* p = std::lower_bound(begin, end, static_cast<int>(a));
-    if (p == end || *p != a) fail(Errc::internal, "Gauss-Newton block outside the energy pattern");
-    Kc_.valuePtr()[p - Kc_.innerIndexPtr()] += std::conj(ea.l) * eb.l + ea.m * std::conj(eb.m);
-  }
-  // H(a, b) += Ja^T Jb
-  for (int cb = 0; cb < 2; ++cb) {
-    const Index col = 2 * b + cb;
-    const int* begin = H_.innerIndexPtr() + H_.outerIndexPtr()[col];
-    const int* end = H_.innerIndexPtr() + H_.outerIndexPtr()[col + 1];
-    const int* p = std::lower_bound(begin, end, 2 * a);
-    if (p == end || *p != 2 * a) fail(Errc::internal, "Gauss-Newton block outside the energy pattern");
-    double* v = H_.valuePtr() + (p - H_.innerIndexPtr());
-    for (int ra = 0; ra < 2; ++ra) v[ra] += Ja[0 * 2 + ra] * Jb[0 * 2 + cb] + Ja[1 * 2 + ra] * Jb[1 * 2 + cb];
-  }
-}
-
-void GaussNewton::linearise(const VectorXc& z, double s, Eigen::VectorXd& g, double& energy) {
+void GaussNewton::linearise(const VectorXc& z, double s, VectorXc& g, double& energy) {
   const Index n = tp_.use_count;
-  std::fill(H_.valuePtr(), H_.valuePtr() + H_.nonZeros(), 0.0);
   std::fill(Kc_.valuePtr(), Kc_.valuePtr() + Kc_.nonZeros(), Complex(0, 0));
-  g.setZero(2 * n);
+  std::fill(S_.begin(), S_.end(), Complex(0, 0));
+  g.setZero(n);
   energy = 0;
-  std::vector<double> J;
-  auto accumulate = [&](Complex r, const Entry* es, int ne) {
-    energy += std::norm(r);
-    J.resize(static_cast<size_t>(4 * ne));
-    for (int a = 0; a < ne; ++a) {
-      real_block(es[a], &J[static_cast<size_t>(4 * a)]);
-      const double* Ja = &J[static_cast<size_t>(4 * a)];
-      g[2 * es[a].use] += Ja[0] * r.real() + Ja[2] * r.imag();
-      g[2 * es[a].use + 1] += Ja[1] * r.real() + Ja[3] * r.imag();
-    }
-    for (int a = 0; a < ne; ++a)
-      for (int b = 0; b < ne; ++b) add_block(es[a].use, es[b].use, &J[static_cast<size_t>(4 * a)], &J[static_cast<size_t>(4 * b)], es[a], es[b]);
-  };
-  for_each_row(z, s, accumulate);
-  if (B_) {
-    // The boundary term is complex-linear: rows of B as they are.
-    const auto& Br = B_rows_;
-    Entry es[8];
-    for (Index row = 0; row < Br.rows(); ++row) {
-      Complex r{0, 0};
-      int ne = 0;
-      for (Eigen::SparseMatrix<Complex, Eigen::RowMajor, int>::InnerIterator it(Br, row); it; ++it) {
-        r += it.value() * z[it.col()];
-        if (ne < 8) add_entry(es, ne, static_cast<Index>(it.col()), it.value(), 0.0);
+  if (form_ == Residual::PerUse) {
+    linearise_per_use(z, s, g, energy);
+  } else {
+    // A triangle at a time: its three half-edges' rows all live on its three uses, so their
+    // products are summed into one 3x3 block (Hermitian Kc, symmetric S) and scattered once.
+    Complex* kc = Kc_.valuePtr();
+    Complex* sv = S_.data();
+    const int* outer = Kc_.outerIndexPtr();
+    const size_t nt = tp_.corner_use.size() / 3;
+    for (size_t t = 0; t < nt; ++t) {
+      const Index u[3] = {tp_.corner_use[3 * t], tp_.corner_use[3 * t + 1], tp_.corner_use[3 * t + 2]};
+      const Complex zc[3] = {z[u[0]], z[u[1]], z[u[2]]};
+      Complex kl[3][3] = {}, sl[3][3] = {}, gl[3] = {};
+      for (int j = 0; j < 3; ++j) {
+        const size_t h = 3 * t + static_cast<size_t>(j);
+        HalfEdgeRow row;
+        half_edge_row(c_, h, sw_[h], zc, j, s, row);
+        len_[h] = row.len;
+        const Complex r = row.p - row.q;
+        energy += std::norm(r);
+        for (int a = 0; a < 3; ++a) {
+          gl[a] += cmul(row.l[a], r) + row.m[a] * std::conj(r);
+          for (int b = a; b < 3; ++b) {
+            kl[a][b] += cmul(row.l[a], row.l[b]) + cmul(row.m[b], row.m[a]);
+            sl[a][b] += cmul(row.l[a], row.m[b]) + cmul(row.l[b], row.m[a]);
+          }
+        }
       }
-      accumulate(r, es, ne);
+      const std::uint8_t* off = &block_offset_[9 * t];
+      auto slot_of = [&](int a, int b) {
+        const std::uint8_t o = off[3 * a + b];
+        return o != kFarOffset ? outer[u[b]] + o : slot(u[a], u[b]);
+      };
+      for (int a = 0; a < 3; ++a) {
+        g[u[a]] += gl[a];
+        for (int b = a; b < 3; ++b) {
+          const int ab = slot_of(a, b);
+          kc[ab] += kl[a][b];
+          sv[ab] += sl[a][b];
+          if (b != a) {
+            const int ba = slot_of(b, a);
+            kc[ba] += std::conj(kl[a][b]);
+            sv[ba] += sl[a][b];
+          }
+        }
+      }
     }
+  }
+  linearise_barrier(z, g, energy);
+  if (B_ && B_->nonZeros()) {
+    // The boundary term is complex-linear: B^H B (constant) and B^H (B z).
+    Complex* kc = Kc_.valuePtr();
+    for (size_t i = 0; i < btb_slot_.size(); ++i) kc[btb_slot_[i]] += btb_[i];
+    const VectorXc bz = (*B_) * z;
+    energy += bz.squaredNorm();
+    g += B_->adjoint() * bz;
   }
 }
 
-double GaussNewton::energy(const VectorXc& z, double s) const {
-  double e = 0;
-  for_each_row(z, s, [&](Complex r, const Entry*, int) { e += std::norm(r); });
-  if (B_) e += ((*B_) * z).squaredNorm();
+double GaussNewton::barrier_energy(const VectorXc& z) const {
+  double e = 0, r = 0;
+  std::array<Complex, 3> l;
+  for (size_t t = 0; t < barrier_.triangles(); ++t)
+    if (barrier_.row(t, z[tp_.corner_use[3 * t]], z[tp_.corner_use[3 * t + 1]], z[tp_.corner_use[3 * t + 2]], r, l)) e += r * r;
   return e;
 }
 
-double GaussNewton::rescale(VectorXc& z, double s) const {
-  // E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R; dE/da = 0 <=> P t^2 - (2-s) Q t + (1-s) R = 0, t = a^s.
-  double P = 0, Q = 0, R = 0;
-  for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
-    P += std::norm(p);
-    Q += (std::conj(p) * q).real();
-    R += std::norm(q);
+void GaussNewton::linearise_barrier(const VectorXc& z, VectorXc& g, double& energy) {
+  // A real residual r with dr = sum 2 Re(l_k dz_k): entries (l_k, conj(l_k)). Few triangles are
+  // active (none on a well-shaped layout), so their blocks are found by search.
+  Complex* kc = Kc_.valuePtr();
+  Complex* sv = S_.data();
+  double r = 0;
+  std::array<Complex, 3> l;
+  for (size_t t = 0; t < barrier_.triangles(); ++t) {
+    const Index u[3] = {tp_.corner_use[3 * t], tp_.corner_use[3 * t + 1], tp_.corner_use[3 * t + 2]};
+    if (!barrier_.row(t, z[u[0]], z[u[1]], z[u[2]], r, l)) continue;
+    energy += r * r;
+    for (int a = 0; a < 3; ++a) {
+      const Complex la = l[static_cast<size_t>(a)], ma = std::conj(la);
+      g[u[a]] += cmul(la, Complex(r, 0)) + ma * r;
+      for (int b = 0; b < 3; ++b) {
+        const Complex lb = l[static_cast<size_t>(b)], mb = std::conj(lb);
+        const int ab = slot(u[a], u[b]);
+        kc[ab] += cmul(la, lb) + cmul(mb, ma);
+        sv[ab] += cmul(la, mb) + cmul(lb, ma);
+      }
+    }
+  }
+}
+
+void GaussNewton::linearise_per_use(const VectorXc& z, double s, VectorXc& g, double& energy) {
+  // The eq. 7 rows sum several triangles' predictions: entries by use, blocks found one by one.
+  Complex* kc = Kc_.valuePtr();
+  Complex* sv = S_.data();
+  for_each_row(z, s, [&](Complex r, const Entry* es, int ne) {
+    energy += std::norm(r);
+    for (int a = 0; a < ne; ++a) {
+      g[es[a].use] += cmul(es[a].l, r) + es[a].m * std::conj(r);
+      for (int b = 0; b < ne; ++b) {
+        const int ab = slot(es[a].use, es[b].use);
+        kc[ab] += cmul(es[a].l, es[b].l) + cmul(es[b].m, es[a].m);
+        sv[ab] += cmul(es[a].l, es[b].m) + cmul(es[b].l, es[a].m);
+      }
+    }
   });
-  if (B_) P += ((*B_) * z).squaredNorm();
+  for (size_t h = 0; h < len_.size(); ++h) {
+    const Complex d = z[tp_.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))]] - z[tp_.corner_use[h]];
+    len_[h] = std::sqrt(std::norm(d));
+  }
+}
+
+double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, ScaleSums* sums) const {
+  // rho = L / |d| (1 where either is 0), against its value at the linearisation (len_).
+  double change = 0;
+  auto rho_ratio = [&](size_t h, double len) {
+    const double L = c_.length[h];
+    const double before = len_[h] > 0 && L > 0 ? L / len_[h] : 1.0;
+    const double after = len > 0 && L > 0 ? L / len : 1.0;
+    change = std::max(change, std::abs(after / before - 1.0));
+  };
+  double e = 0;
+  ScaleSums ps;
+  if (form_ == Residual::PerUse) {
+    for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
+      e += std::norm(p - q);
+      ps.P += std::norm(p);
+      ps.Q += (std::conj(p) * q).real();
+      ps.R += std::norm(q);
+    });
+    if (rho_change)
+      for (size_t h = 0; h < len_.size(); ++h)
+        rho_ratio(h, std::abs(z[tp_.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))]] - z[tp_.corner_use[h]]));
+  } else {
+    // The rows' values only (no derivatives).
+    const size_t nt = tp_.corner_use.size() / 3;
+    for (size_t t = 0; t < nt; ++t) {
+      const Complex zc[3] = {z[tp_.corner_use[3 * t]], z[tp_.corner_use[3 * t + 1]], z[tp_.corner_use[3 * t + 2]]};
+      for (int j = 0; j < 3; ++j) {
+        const size_t h = 3 * t + static_cast<size_t>(j);
+        const Complex d = zc[(j + 1) % 3] - zc[j];
+        const double len = std::sqrt(std::norm(d));
+        const double mag = c_.beta[h] * ratio_pow(c_.length[h] / std::max(len, 1e-12), s);
+        const Complex r = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d - Complex(-mag * d.imag(), mag * d.real()));
+        e += std::norm(r);
+        if (rho_change) rho_ratio(h, len);
+        if (sums) {
+          const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
+          const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());
+          ps.P += std::norm(p);
+          ps.Q += p.real() * q.real() + p.imag() * q.imag();
+          ps.R += std::norm(q);
+        }
+      }
+    }
+  }
+  if (B_ && B_->nonZeros()) {
+    const double eb = ((*B_) * z).squaredNorm();
+    e += eb;
+    ps.P += eb;
+  }
+  ps.barrier = barrier_energy(z);
+  e += ps.barrier;
+  if (rho_change) *rho_change = change;
+  if (sums) *sums = ps;
+  return e;
+}
+
+double GaussNewton::energy(const VectorXc& z, double s) const { return energy_at(z, s, nullptr, nullptr); }
+
+double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) {
+  // E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R; dE/da = 0 <=> P t^2 - (2-s) Q t + (1-s) R = 0, t = a^s.
+  // The sums at z come from the line search that accepted z, when it did (one pass fewer).
+  double P = 0, Q = 0, R = 0, Eb = 0;  // Eb: the shape barrier, unchanged by a scaling
+  const bool known = accepted_sums_valid_;
+  if (known) {
+    P = accepted_sums_.P;
+    Q = accepted_sums_.Q;
+    R = accepted_sums_.R;
+    Eb = accepted_sums_.barrier;
+    accepted_sums_valid_ = false;
+  } else if (form_ == Residual::PerUse) {
+    for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
+      P += std::norm(p);
+      Q += (std::conj(p) * q).real();
+      R += std::norm(q);
+    });
+  } else {
+    const size_t nt = tp_.corner_use.size() / 3;
+    for (size_t t = 0; t < nt; ++t) {
+      const Complex zc[3] = {z[tp_.corner_use[3 * t]], z[tp_.corner_use[3 * t + 1]], z[tp_.corner_use[3 * t + 2]]};
+      for (int j = 0; j < 3; ++j) {
+        const size_t h = 3 * t + static_cast<size_t>(j);
+        const Complex d = zc[(j + 1) % 3] - zc[j];
+        const double ad = std::max(std::sqrt(std::norm(d)), 1e-12);
+        const double mag = c_.beta[h] * ratio_pow(c_.length[h] / ad, s);
+        const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
+        const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());
+        P += std::norm(p);
+        Q += p.real() * q.real() + p.imag() * q.imag();
+        R += std::norm(q);
+      }
+    }
+  }
+  if (!known && B_ && B_->nonZeros()) P += ((*B_) * z).squaredNorm();
+  if (!known) Eb = barrier_energy(z);
+  energy_after = P - 2 * Q + R + Eb;
   if (!(P > 0) || s <= 0) return 1.0;
   const double b = -(2 - s) * Q, c = (1 - s) * R, disc = b * b - 4 * P * c;
   if (disc < 0) return 1.0;
@@ -231,18 +426,19 @@ double GaussNewton::rescale(VectorXc& z, double s) const {
   const double a = t > 0 ? std::pow(t, 1.0 / s) : 1.0;
   if (!std::isfinite(a) || !(a > 0)) return 1.0;
   z = ((z.array() - center_) * a + center_).matrix();
+  energy_after = a * a * P - 2 * std::pow(a, 2 - s) * Q + std::pow(a, 2 - 2 * s) * R + Eb;
   return a;
 }
 
-bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
-                             Eigen::VectorXd& delta) {
+bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
+                             const Eigen::MatrixXd& C, Eigen::VectorXd& delta) {
   // Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
   // by a complex factorisation of the complex-linear part of an earlier Gauss-Newton matrix (the
   // constraint preconditioner keeps every iterate in the null space of C). The real 2n matrix
   // itself was factorised before: measured at 1M triangles, s = 1, its factor took the peak from
   // 1.35 GB (s = 0) to 3.1 GB; the complex one is the s = 0 factor's storage, refactorised in
   // place, and costs 4-8 CG iterations per step where the real one cost 1-3.
-  const Index nr = static_cast<Index>(H.rows());
+  const Index nr = 2 * static_cast<Index>(Kc.rows());
   auto refactor = [&] {
     auto shift_of = [&](Index i) { return 0.5 * (shift[2 * i] + shift[2 * i + 1]); };
     if (!p_of_.empty()) {
@@ -261,63 +457,135 @@ bool GaussNewton::solve_step(const SpMatR& H, const Eigen::VectorXd& shift, cons
       Wx_ = chol_->solve(Kpx);
       Sx_ -= Kpx.adjoint() * Wx_;
     } else {
-      SpMatC Kd = identity_ ? Kc_ : SpMatC(sub_.P.adjoint() * Kc_ * sub_.P);
+      SpMatC Kd = Kc;
       for (Index i = 0; i < nr / 2; ++i) Kd.coeffRef(i, i) += shift_of(i);
       chol_->factorize(Kd);
     }
     factored_ = true;
+    units_valid_ = false;
   };
-  // Refactorise when the last step needed many iterations (a factorisation costs about ten
-  // solves at 1M triangles). A count, not a timing: results must not depend on machine load.
-  bool fresh = false;
-  if (!factored_ || last_pcg_ > kMaxStaleIterations) {
+  // Refactorise when the factor has gone stale (kRefactorExtra). A count, not a timing: results
+  // must not depend on machine load.
+  bool fresh = baseline_pending_;  // refactorised at the end of the last step: as good as fresh
+  if (!factored_ || (!fresh && last_pcg_ > fresh_pcg_ + kRefactorExtra)) {
     refactor();
     fresh = true;
   }
   Eigen::MatrixXd W;
-  Eigen::FullPivLU<Eigen::MatrixXd> S;
+  Eigen::FullPivLU<Eigen::MatrixXd> Sc;
   auto project = [&] {
     if (C.rows() == 0) return;
-    W = precondition(C.transpose());
-    S.compute(C * W);
+    // The unknowns the constraint rows touch (the gauge's two uses, usually).
+    std::vector<Index> touched;
+    for (Index k = 0; k < nr / 2; ++k)
+      for (Index j = 0; j < C.rows(); ++j)
+        if (C(j, 2 * k) != 0.0 || C(j, 2 * k + 1) != 0.0) {
+          touched.push_back(k);
+          break;
+        }
+    if (touched.size() > kMaxCachedUnits) {
+      this->precondition(C.transpose(), W);
+    } else {
+      // W = M^{-1} C^T from M^{-1} e_k, kept while the factor is: the preconditioner is
+      // complex-linear, so a row's column is a complex combination of those (a solve per step
+      // saved; the rows' direction changes with the layout, their unknowns do not).
+      if (touched != unit_uses_) {
+        unit_uses_ = touched;
+        units_valid_ = false;
+      }
+      if (!units_valid_) {
+        Eigen::MatrixXd E = Eigen::MatrixXd::Zero(nr, static_cast<Index>(touched.size()));
+        for (size_t q = 0; q < touched.size(); ++q) E(2 * touched[q], static_cast<Index>(q)) = 1.0;
+        this->precondition(E, units_);
+        units_valid_ = true;
+      }
+      W.setZero(nr, C.rows());
+      for (Index j = 0; j < C.rows(); ++j)
+        for (size_t q = 0; q < touched.size(); ++q) {
+          const Index k = touched[q];
+          const Complex c(C(j, 2 * k), C(j, 2 * k + 1));
+          if (c == Complex(0, 0)) continue;
+          as_complex_col(W, j) += c * as_complex_col(units_, static_cast<Index>(q));
+        }
+    }
+    Sc.compute(C * W);
   };
   project();
-  for (;;) {
-    auto precondition = [&](const Eigen::VectorXd& r) {
-      Eigen::VectorXd y = this->precondition(r);
-      if (C.rows() > 0) y -= W * S.solve(C * y);
-      return y;
-    };
-    auto apply = [&](const Eigen::VectorXd& p) { return Eigen::VectorXd(H * p + shift.cwiseProduct(p)); };
-    delta.setZero(nr);
-    last_pcg_ = 0;
-    Eigen::VectorXd r = -g, zr = precondition(r), p = zr;
+  const int* outer = Kc.outerIndexPtr();
+  const int* inner = Kc.innerIndexPtr();
+  const Complex* kv = Kc.valuePtr();
+  // q = (H + diag(shift)) p, H p = Kc p + S conj(p) in complex form.
+  auto apply = [&](const Eigen::VectorXd& p, Eigen::VectorXd& q) {
+    const Eigen::Map<const VectorXc> pc = as_complex(p);
+    Eigen::Map<VectorXc> qc = as_complex(q);
+    qc.setZero();
+    for (Index col = 0; col < pc.size(); ++col) {
+      const Complex x = pc[col], cx = std::conj(x);
+      for (int v = outer[col]; v < outer[col + 1]; ++v) qc[inner[v]] += kv[v] * x + S[v] * cx;
+    }
+    q += shift.cwiseProduct(p);
+  };
+  Eigen::VectorXd r(nr), zr(nr), p(nr), q(nr);
+  Eigen::MatrixXd zr_m;
+  double rz_stale = 0;
+  auto precondition = [&](const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
+    this->precondition(rr, zr_m);
+    y = zr_m.col(0);
+    if (C.rows() > 0) y -= W * Sc.solve(C * y);
+  };
+  delta.setZero(nr);
+  r = -g;
+  last_pcg_ = 0;
+  double target = 0;  // on r.z, relative to its start: kCgTolerance
+  for (int phase = 0;; ++phase) {
+    precondition(r, zr);
+    p = zr;
     double rz = r.dot(zr);
-    const double rz0 = rz;
-    const double target = kCgTolerance * rz0;
-    bool converged = rz0 <= 0;
-    for (int it = 0; it < kMaxCgIterations && !converged; ++it) {
-      const Eigen::VectorXd q = apply(p);
+    if (phase == 0 || !(rz_stale > 0)) {
+      target = kCgTolerance * rz;
+    } else {
+      // A refactorisation mid-step: go on from delta (every iterate keeps C delta = 0) with the
+      // reduction still missing carried over to the new preconditioner's norm.
+      target *= rz / rz_stale;
+    }
+    bool converged = rz <= target;
+    // A stale factor gets as many iterations as the last fresh one needed plus kRefactorExtra,
+    // then it is refactorised (what the extra iterations would cost).
+    const bool baseline = phase == 0 && fresh;  // this count is the fresh factor's
+    const int limit = baseline ? kMaxCgIterations : std::min(kMaxCgIterations, fresh_pcg_ + kRefactorExtra);
+    int its = 0;
+    for (; its < limit && !converged; ++its) {
+      apply(p, q);
       const double pq = p.dot(q);
       if (!(pq > 0)) break;
       const double a = rz / pq;
       delta += a * p;
       r -= a * q;
-      zr = precondition(r);
+      precondition(r, zr);
       const double rz_new = r.dot(zr);
       ++pcg_iterations_;
-      last_pcg_ = it + 1;
+      ++last_pcg_;
       converged = !(rz_new > target);
       p = zr + (rz_new / rz) * p;
       rz = rz_new;
     }
-    if (!delta.allFinite()) delta.setZero(nr);
+    rz_stale = rz;
+    if (!delta.allFinite()) {  // start again from zero
+      delta.setZero(nr);
+      r = -g;
+      rz_stale = 0;
+    }
+    if (baseline) {
+      fresh_pcg_ = its;
+      baseline_pending_ = false;
+    }
     if (converged) return true;
     // Every CG iterate lowers the quadratic model, so an unfinished one is still a descent
-    // direction (the line search sizes it); a stale factor gets one refactorisation first.
+    // direction (the line search sizes it); a stale factor is refactorised first.
     if (fresh) return delta.squaredNorm() > 0;
     refactor();
     fresh = true;
+    baseline_pending_ = true;  // the next step measures the new factor
     project();
   }
 }
@@ -332,67 +600,73 @@ bool GaussNewton::share_factor(SparseCholesky& chol, Index x0, Index x1) {
   Index k = 0;
   for (Index u = 0; u < n; ++u)
     if (u != x0 && u != x1) p_of_[static_cast<size_t>(u)] = k++;
-  // The pattern PartitionedKKT::set_matrix gave K_PP, built the same way (triplets of K's pattern).
-  std::vector<Eigen::Triplet<Complex>> pp;
-  pp.reserve(static_cast<size_t>(Kc_.nonZeros()));
-  for (Index c = 0; c < Kc_.outerSize(); ++c)
-    for (SpMatC::InnerIterator it(Kc_, c); it; ++it) {
-      const Index pr = p_of_[static_cast<size_t>(it.row())], pc = p_of_[static_cast<size_t>(c)];
-      if (pr >= 0 && pc >= 0) pp.emplace_back(pr, pc, Complex(1, 0));
-    }
+  // K_PP's pattern as PartitionedKKT::set_matrix built it: K's columns and rows without x0, x1,
+  // renumbered (the numbering keeps the order, so every column stays sorted). Written in place:
+  // triplets and their sort cost 150 MB at 1M triangles, at the peak of the solve.
+  const int* outer = Kc_.outerIndexPtr();
+  const int* inner = Kc_.innerIndexPtr();
+  Index nnz = 0;
+  for (Index c = 0; c < n; ++c)
+    if (p_of_[static_cast<size_t>(c)] >= 0)
+      for (int v = outer[c]; v < outer[c + 1]; ++v) nnz += p_of_[static_cast<size_t>(inner[v])] >= 0;
   Kpp_.resize(n - 2, n - 2);
-  Kpp_.setFromTriplets(pp.begin(), pp.end());
-  Kpp_.makeCompressed();
+  Kpp_.resizeNonZeros(nnz);
+  int* pp_outer = Kpp_.outerIndexPtr();
+  int* pp_inner = Kpp_.innerIndexPtr();
   kc_to_pp_.assign(static_cast<size_t>(Kc_.nonZeros()), -1);
-  for (Index c = 0; c < Kc_.outerSize(); ++c)
-    for (Index v = Kc_.outerIndexPtr()[c]; v < Kc_.outerIndexPtr()[c + 1]; ++v) {
-      const Index pr = p_of_[static_cast<size_t>(Kc_.innerIndexPtr()[v])], pc = p_of_[static_cast<size_t>(c)];
+  px_entries_.clear();
+  Index pos = 0;
+  pp_outer[0] = 0;
+  for (Index c = 0; c < n; ++c) {
+    const Index pc = p_of_[static_cast<size_t>(c)];
+    for (int v = outer[c]; v < outer[c + 1]; ++v) {
+      const Index pr = p_of_[static_cast<size_t>(inner[v])];
       if (pc < 0 && pr >= 0) px_entries_.push_back({v, pr, static_cast<Index>(c == x0 ? 0 : 1)});
       if (pr < 0 || pc < 0) continue;
-      const int* begin = Kpp_.innerIndexPtr() + Kpp_.outerIndexPtr()[pc];
-      const int* end = Kpp_.innerIndexPtr() + Kpp_.outerIndexPtr()[pc + 1];
-      kc_to_pp_[static_cast<size_t>(v)] = std::lower_bound(begin, end, static_cast<int>(pr)) - Kpp_.innerIndexPtr();
+      pp_inner[pos] = pr;
+      kc_to_pp_[static_cast<size_t>(v)] = pos++;
     }
+    if (pc >= 0) pp_outer[pc + 1] = pos;
+  }
+  std::fill(Kpp_.valuePtr(), Kpp_.valuePtr() + nnz, Complex(1, 0));
   return true;
 }
 
-Eigen::MatrixXd GaussNewton::precondition(const Eigen::MatrixXd& r) {
+void GaussNewton::precondition(const Eigen::MatrixXd& r, Eigen::MatrixXd& out) {
   const Index n = r.rows() / 2;
   auto at = [&](Index k, Index j) { return Complex(r(2 * k, j), r(2 * k + 1, j)); };
-  Eigen::MatrixXcd x;
+  out.resize(r.rows(), r.cols());
+  auto put = [&](Index k, Index j, Complex v) {
+    out(2 * k, j) = v.real();
+    out(2 * k + 1, j) = v.imag();
+  };
   if (!p_of_.empty()) {
-    Eigen::MatrixXcd b(n - 2, r.cols());
+    pre_b_.resize(n - 2, r.cols());
     for (Index j = 0; j < r.cols(); ++j)
       for (Index k = 0; k < n; ++k)
-        if (p_of_[static_cast<size_t>(k)] >= 0) b(p_of_[static_cast<size_t>(k)], j) = at(k, j);
+        if (p_of_[static_cast<size_t>(k)] >= 0) pre_b_(p_of_[static_cast<size_t>(k)], j) = at(k, j);
     // [K_PP K_PX; K_XP K_XX] x = b by block elimination: y = K_PP^{-1} b_P,
     // x_X = S^{-1} (b_X - K_PX^H y), x_P = y - W x_X.
-    Eigen::MatrixXcd xp = chol_->solve(b);
+    pre_x_ = chol_->solve(pre_b_);
     Eigen::MatrixXcd bx(2, r.cols());
     for (Index j = 0; j < r.cols(); ++j)
       for (int s = 0; s < 2; ++s) bx(s, j) = at(split_[s], j);
     // K_PX^H y = W^H K_PP y = W^H b_P (K_PP Hermitian): no product with K_PX needed.
-    const Eigen::MatrixXcd xx = Sx_.fullPivLu().solve(bx - Wx_.adjoint() * b);
-    xp -= Wx_ * xx;
-    x.resize(n, r.cols());
+    const Eigen::MatrixXcd xx = Sx_.fullPivLu().solve(bx - Wx_.adjoint() * pre_b_);
+    pre_x_ -= Wx_ * xx;
     for (Index j = 0; j < r.cols(); ++j) {
       for (Index k = 0; k < n; ++k)
-        if (p_of_[static_cast<size_t>(k)] >= 0) x(k, j) = xp(p_of_[static_cast<size_t>(k)], j);
-      for (int s = 0; s < 2; ++s) x(split_[s], j) = xx(s, j);
+        if (p_of_[static_cast<size_t>(k)] >= 0) put(k, j, pre_x_(p_of_[static_cast<size_t>(k)], j));
+      for (int s = 0; s < 2; ++s) put(split_[s], j, xx(s, j));
     }
   } else {
-    Eigen::MatrixXcd b(n, r.cols());
+    pre_b_.resize(n, r.cols());
     for (Index j = 0; j < r.cols(); ++j)
-      for (Index k = 0; k < n; ++k) b(k, j) = at(k, j);
-    x = chol_->solve(b);
+      for (Index k = 0; k < n; ++k) pre_b_(k, j) = at(k, j);
+    pre_x_ = chol_->solve(pre_b_);
+    for (Index j = 0; j < r.cols(); ++j)
+      for (Index k = 0; k < n; ++k) put(k, j, pre_x_(k, j));
   }
-  Eigen::MatrixXd out(r.rows(), r.cols());
-  for (Index j = 0; j < r.cols(); ++j)
-    for (Index k = 0; k < n; ++k) {
-      out(2 * k, j) = x(k, j).real();
-      out(2 * k + 1, j) = x(k, j).imag();
-    }
-  return out;
 }
 
 double GaussNewton::first_flip(const VectorXc& z, const VectorXc& dz) const {
@@ -425,22 +699,36 @@ double GaussNewton::first_flip(const VectorXc& z, const VectorXc& dz) const {
 }
 
 double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
+  accepted_sums_valid_ = false;
   double t0 = now();
-  Eigen::VectorXd g;
+  VectorXc g;
   double e0 = 0;
   linearise(z, s, g, e0);
-  // Without seams H_ is used as it is (a copy cost 170 MB at 1M triangles).
-  SpMatR H_reduced;
-  Eigen::VectorXd gy;
+  last_e0_ = e0;
+  // Without seams Kc_ and S_ are used as they are; with seams the reduced parts are
+  // Kr = P^H Kc P and Sr = P^H S conj(P) (dz = P dy: H dz = Kc P dy + S conj(P) conj(dy)).
+  SpMatC Kr;
+  std::vector<Complex> Sr_values;
+  Eigen::VectorXd gy(2 * (identity_ ? tp_.use_count : sub_.reduced));
   if (identity_) {
-    gy = g;
+    as_complex(gy) = g;
   } else {
-    H_reduced = SpMatR(P_real_.transpose() * H_ * P_real_);
-    gy = P_real_.transpose() * g;
+    SpMatC Sfull = Kc_;
+    std::copy(S_.begin(), S_.end(), Sfull.valuePtr());
+    const SpMatC Kp = SpMatC(sub_.P.adjoint() * Kc_ * sub_.P);
+    const SpMatC Sp = SpMatC(sub_.P.adjoint() * Sfull * SpMatC(sub_.P.conjugate()));
+    // Both on one pattern (their union; the same structure in exact arithmetic).
+    Kr = Kp + Sp;
+    Kr.makeCompressed();
+    Sr_values = values_on(Kr, Sp);
+    const std::vector<Complex> kv = values_on(Kr, Kp);
+    std::copy(kv.begin(), kv.end(), Kr.valuePtr());
+    as_complex(gy) = sub_.P.adjoint() * g;
   }
-  const SpMatR& H = identity_ ? H_ : H_reduced;
+  const SpMatC& Kc = identity_ ? Kc_ : Kr;
+  const Complex* S = identity_ ? S_.data() : Sr_values.data();
   t_assembly_ += now() - t0;
-  const Index nr = static_cast<Index>(H.rows());
+  const Index nr = 2 * static_cast<Index>(Kc.rows());
   // Real constraint rows: Re and Im of each complex row over the reduced unknowns.
   const bool gauge = !gauge_row_.terms.empty();
   const bool whole = gauge && s < 1.0;  // hold the vector (size too), or only its direction
@@ -469,18 +757,22 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
       C(m - 1, 2 * k + 1) += cc.real();
     }
   }
-  Eigen::VectorXd diag = H.diagonal();
+  // The real matrix's diagonal: Kc_ii +- Re S_ii (S_ii conj acts as diag(Re, -Re) on (Re, Im)).
+  Eigen::VectorXd diag(nr);
+  for (Index i = 0; i < nr / 2; ++i) {
+    const int v = diagonal_slot(Kc, i);
+    diag[2 * i] = Kc.valuePtr()[v].real() + S[v].real();
+    diag[2 * i + 1] = Kc.valuePtr()[v].real() - S[v].real();
+  }
   const double dmean = diag.mean() > 0 ? diag.mean() : 1.0;
-  const std::vector<double> rho_before = compute_rho(tp_, c_, z);
   for (int attempt = 0; attempt < 8; ++attempt) {
     const Eigen::VectorXd shift = (lambda_ * diag).array() + 1e-12 * dmean;
     Eigen::VectorXd delta;
-    if (!solve_step(H, shift, gy, C, delta)) {
+    if (!solve_step(Kc, S, shift, gy, C, delta)) {
       lambda_ *= 10;
       continue;
     }
-    VectorXc dy(nr / 2);
-    for (Index k = 0; k < nr / 2; ++k) dy[k] = Complex(delta[2 * k], delta[2 * k + 1]);
+    const VectorXc dy = as_complex(static_cast<const Eigen::VectorXd&>(delta));
     const VectorXc dz = identity_ ? dy : VectorXc(sub_.P * dy);
     const double predicted = -gy.dot(delta);  // first-order decrease (negative)
     // Below s = 2 nothing in the energy keeps a triangle from passing through zero area, and a
@@ -490,12 +782,13 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     const double t_max = std::min(1.0, 0.9 * first_flip(z, dz));
     for (double t = t_max; t >= t_max / 64; t *= 0.5) {
       const VectorXc zt = z + t * dz;
-      const double et = energy(zt, s);
+      double change = 0;
+      ScaleSums sums;
+      const double et = energy_at(zt, s, &change, &sums);
       if (std::isfinite(et) && et <= e0 + 1e-4 * t * predicted) {
-        const std::vector<double> rho_after = compute_rho(tp_, c_, zt);
-        double change = 0;
-        for (size_t h = 0; h < rho_after.size(); ++h) change = std::max(change, std::abs(rho_after[h] / rho_before[h] - 1.0));
         z = zt;
+        accepted_sums_ = sums;
+        accepted_sums_valid_ = true;
         energy_out = et;
         lambda_ = t == 1.0 ? std::max(lambda_ * 0.1, 1e-10) : lambda_;
         return change;

@@ -21,6 +21,37 @@ void set_blas_threads(int threads) {
   if (set) set(threads < 1 ? 1 : threads);
 }
 
+namespace {
+
+// OpenMP regions opened by the calling thread run on it alone while this lives: the
+// max-active-levels ICV of the calling thread's data environment is set to 0 and restored
+// (OpenMP 5: a per-thread setting, so other threads and later regions of the caller are
+// untouched). Through dlsym, as for OpenBLAS: a no-op when no OpenMP runtime is loaded.
+class SerialOpenMP {
+ public:
+  explicit SerialOpenMP(bool on) {
+    using Get = int (*)();
+    static const Get get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
+    static const SetLevels set = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+    if (!on || !get || !set) return;
+    set_ = set;
+    old_ = get();
+    set_(0);
+  }
+  ~SerialOpenMP() {
+    if (set_) set_(old_);
+  }
+  SerialOpenMP(const SerialOpenMP&) = delete;
+  SerialOpenMP& operator=(const SerialOpenMP&) = delete;
+
+ private:
+  using SetLevels = void (*)(int);
+  SetLevels set_ = nullptr;
+  int old_ = 0;
+};
+
+}  // namespace
+
 bool have_cholmod() {
 #ifdef WEFM_HAVE_CHOLMOD
   return true;
@@ -64,6 +95,7 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
                     pattern_outer_.size() == static_cast<size_t>(K.outerSize() + 1) &&
                     std::equal(pattern_outer_.begin(), pattern_outer_.end(), K.outerIndexPtr()) &&
                     std::equal(pattern_inner_.begin(), pattern_inner_.end(), K.innerIndexPtr());
+  const SerialOpenMP serial(threads_ <= 1);
   if (!same) {
     const double t0 = now();
     n_ = static_cast<Index>(K.rows());

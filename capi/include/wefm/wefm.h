@@ -41,6 +41,9 @@
  *              before it returns; results are bit-identical for any count). The OpenBLAS under
  *              CHOLMOD keeps a thread pool from load time; a solve sets it to wefm_options.threads
  *              (0 = 1) threads, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether).
+ *              With threads <= 1, CHOLMOD's own OpenMP loops run on the solving thread alone
+ *              during each factorisation (that thread's OpenMP max-active-levels is set to 0 and
+ *              restored; other threads are not affected).
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or

@@ -39,7 +39,9 @@ class GaussNewton {
   // K_pattern: the Hermitian energy at s = 0 (its pattern is the pattern of every Gauss-Newton
   // matrix). rows: constraints over the reduced unknowns that every step must keep (caller rows,
   // cycle closures); they hold at the starting layout.
-  GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC K_pattern,
+  // K_pattern is taken over (swapped out: Eigen 3.4's sparse matrices have no move constructor, and
+  // a copy of K is 70 MB at 1M triangles); the caller's matrix is left empty.
+  GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC& K_pattern,
               const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta);
 
   // The gauge v = sum_k g_k y_k (a vector between two far uses). For s >= 1 only its direction is
@@ -62,8 +64,9 @@ class GaussNewton {
 
   double energy(const VectorXc& z, double s) const;
 
-  // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists).
-  double rescale(VectorXc& z, double s) const;
+  // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists)
+  // and writes the energy after it (E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R: no second pass).
+  double rescale(VectorXc& z, double s, double& energy_after);
 
   // Iterates from z (updated in place) at s until the rho change falls below tol or max_it.
   // `check` is called once per iteration (progress, cancellation).
@@ -72,15 +75,16 @@ class GaussNewton {
   template <class Check>
   GaussNewtonReport run(VectorXc& z, double s, double tol, int max_it, bool free_scale, Check&& check) {
     GaussNewtonReport rep;
-    double e_prev = energy(z, s);
-    double e_window[5] = {e_prev, e_prev, e_prev, e_prev, e_prev};  // energies of the last five iterations
+    double e_prev = 0;
+    double e_window[5] = {};  // energies of the last five iterations
     for (int it = 0; it < max_it; ++it) {
       check(it);
       rep.rho_change = step(z, s, rep.energy);
-      if (free_scale) {
-        rep.rho_change = std::max(rep.rho_change, std::abs(rescale(z, s) - 1.0));
-        rep.energy = energy(z, s);
+      if (it == 0) {
+        e_prev = last_e0_;  // the energy at the start, from the first linearisation
+        std::fill(e_window, e_window + 5, e_prev);
       }
+      if (free_scale) rep.rho_change = std::max(rep.rho_change, std::abs(rescale(z, s, rep.energy) - 1.0));
       rep.iterations = it + 1;
       // Converged when rho settles, or when the energy no longer decreases (a flat valley where
       // rho drifts without changing the fit): below 1e-9 relative, or below 1e-7 on an undamped
@@ -106,18 +110,37 @@ class GaussNewton {
 
   // Analyses and factorisations of the factor of its own (a shared factor counts in its owner).
   FactorCounters& counters() { return own_chol_.counters(); }
+  SparseCholesky& own_factor() { return own_chol_; }
   std::int64_t pcg_iterations() const { return pcg_iterations_; }
   double time_assembly() const { return t_assembly_; }
 
  private:
   // One damped step; returns the max relative rho change it made.
+  double step(VectorXc& z, double s, double& energy_out);
   // The smallest t > 0 at which z + t dz flips a triangle that is positive in z (infinity if none).
   double first_flip(const VectorXc& z, const VectorXc& dz) const;
-  double step(VectorXc& z, double s, double& energy_out);
-  bool solve_step(const SpMatR& H, const Eigen::VectorXd& shift, const Eigen::VectorXd& g, const Eigen::MatrixXd& C,
-                  Eigen::VectorXd& delta);
-  void linearise(const VectorXc& z, double s, Eigen::VectorXd& g, double& energy);
-  void add_block(Index a, Index b, const double* Ja, const double* Jb, const Entry& ea, const Entry& eb);
+  // The shape barrier's energy at z, and (with Kc_, S_, g) its rows added to the linearisation.
+  double barrier_energy(const VectorXc& z) const;
+  void linearise_barrier(const VectorXc& z, VectorXc& g, double& energy);
+  // Projected CG on the step system; `Kc`, `S` are the (reduced) complex-linear and anti-linear
+  // parts of the Gauss-Newton matrix: H dy = Kc dy + S conj(dy).
+  bool solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
+                  const Eigen::MatrixXd& C, Eigen::VectorXd& delta);
+  // Kc_, S_, the gradient g (complex: J^H r, Re and Im interleaved in the real CG) and the energy
+  // at z; also the UV base length of every half-edge (len_), against which a step's rho change is
+  // measured.
+  void linearise(const VectorXc& z, double s, VectorXc& g, double& energy);
+  void linearise_per_use(const VectorXc& z, double s, VectorXc& g, double& energy);
+  // The energy's parts along z -> a z: P (degree 1), Q (cross), R (altitude, degree 1 - s).
+  struct ScaleSums {
+    double P = 0, Q = 0, R = 0;
+    double barrier = 0;  // the shape barrier's energy: scale-free, so outside P, Q, R
+  };
+  // Energy at z; with `rho_change`, also the max relative rho change against len_; with `sums`,
+  // the parts rescale needs.
+  double energy_at(const VectorXc& z, double s, double* rho_change, ScaleSums* sums) const;
+  // Position of row a in column b of K's pattern.
+  int slot(Index a, Index b) const;
   template <class F>
   void for_each_row(const VectorXc& z, double s, F&& f) const;
   template <class F>
@@ -127,21 +150,31 @@ class GaussNewton {
   const Coefficients& c_;
   const SpMatC* B_;
   Residual form_;
-  std::vector<double> w_;
+  std::vector<double> w_;   // PerUse: w per half-edge (eq. 9)
+  std::vector<double> sw_;  // PerHalfEdge: sqrt(w), the weight of each half-edge's row
   const SeamSubstitution& sub_;
   ShapeBarrier barrier_;
-  Eigen::SparseMatrix<Complex, Eigen::RowMajor, int> B_rows_;  // B by rows, for the linearisation
-  std::vector<std::vector<size_t>> opposite_;                   // PerUse: half-edges opposite each use
-  SpMatR P_real_;
+  std::vector<std::vector<size_t>> opposite_;  // PerUse: half-edges opposite each use
   bool identity_ = true;
-  SpMatR H_;   // real 2n x 2n over uses, fixed pattern
-  SpMatC Kc_;  // its complex-linear part (Hermitian, n x n, the pattern of K): the preconditioner
+  // The Gauss-Newton matrix in complex form, on the pattern of K: Kc_ (Hermitian) is its
+  // complex-linear part and the preconditioner, S_ (complex symmetric, values on Kc_'s pattern)
+  // its anti-linear part. A real 2n x 2n copy (four doubles per entry of K, and their indices)
+  // cost 170 MB at 1M triangles and more memory traffic per product.
+  SpMatC Kc_;
+  std::vector<Complex> S_;
+  std::vector<int> btb_slot_;  // B^H B (constant: the boundary term is complex-linear) in Kc_'s pattern
+  std::vector<Complex> btb_;
+  std::vector<double> len_;    // UV base length per half-edge at the last linearisation
+  // PerHalfEdge: per triangle, the offset of entry (a, b) of its block in column b of Kc_
+  // (kFarOffset: found by search, for columns longer than a byte can index).
+  std::vector<std::uint8_t> block_offset_;
+  static constexpr std::uint8_t kFarOffset = 255;
   std::vector<LinearRow> rows_;
   LinearRow gauge_row_;
   Complex center_{0, 0};
-  // Real vectors (Re, Im interleaved per unknown) through the complex factor: the real form of a
-  // Hermitian matrix is symmetric, so the complex factor preconditions the real CG.
-  Eigen::MatrixXd precondition(const Eigen::MatrixXd& r);
+  // Preconditioner: the complex factor applied to real vectors (Re, Im interleaved per unknown):
+  // the real form of a Hermitian matrix is symmetric, so the complex factor preconditions the real CG.
+  void precondition(const Eigen::MatrixXd& r, Eigen::MatrixXd& out);
   SparseCholesky own_chol_;
   SparseCholesky* chol_ = &own_chol_;
   // With a shared factor: use -> index in K_PP (-1 for the split uses), and Kc_ value -> K_PP value.
@@ -155,10 +188,27 @@ class GaussNewton {
   std::vector<SplitEntry> px_entries_;
   Eigen::MatrixXcd Wx_;    // K_PP^{-1} K_PX
   Eigen::Matrix2cd Sx_;    // K_XX - K_XP K_PP^{-1} K_PX
+  Eigen::MatrixXcd pre_b_, pre_x_;  // preconditioner buffers (kept: no allocation per CG iteration)
+  // M^{-1} e_k for the unknowns k of the constraint rows (real form), while the factor is unchanged.
+  static constexpr size_t kMaxCachedUnits = 8;
+  std::vector<Index> unit_uses_;
+  Eigen::MatrixXd units_;
+  bool units_valid_ = false;
+  double last_e0_ = 0;         // energy at the last linearisation
+  ScaleSums accepted_sums_;  // at the layout the last line search accepted, until rescale uses them
+  bool accepted_sums_valid_ = false;
   double lambda_ = 1e-6;
   bool factored_ = false;
-  int last_pcg_ = 0;  // iterations of the last step's conjugate gradients
-  static constexpr int kMaxStaleIterations = 10;
+  int last_pcg_ = 0;   // iterations of the last step's conjugate gradients
+  int fresh_pcg_ = 0;  // the same, for the first step solved with the current factor
+  bool baseline_pending_ = false;  // refactorised mid-step: the next step sets fresh_pcg_
+  // Refactorise when the last step took this many CG iterations more than the first one with the
+  // current factor: a refactorisation costs 12-22 single-vector preconditioner solves (measured
+  // from 4k to 500k uses; 11.7 at 1M triangles), so it pays only when the factor has gone stale.
+  // Measured at 1M triangles (plate, s = 1): a step takes 10-13 iterations with a fresh factor
+  // and 10-13 with one two steps old; the former rule (refactorise after any step over 10
+  // iterations) refactorised three times for nothing.
+  static constexpr int kRefactorExtra = 10;
   // Inexact Newton: CG stops at 1e-2 in the preconditioned residual norm (1e-4 in r.z). At 1M
   // triangles (s = 1) 1e-4 in the norm took 40 CG iterations where 1e-2 takes 22, for the same
   // Gauss-Newton iterations and the same layout to 1e-9 in score; on the sphere with a small hole

@@ -46,8 +46,9 @@ class PartitionedKKT {
   void release_caches() {
     unit_.clear();
     cache_valid_ = false;
-    K_ = SpMatC();
-    K_PX_ = Eigen::SparseMatrix<Complex>();
+    // Swapped with empty matrices: Eigen 3.4's sparse assignment keeps the old storage.
+    SpMatC().swap(K_);
+    Eigen::SparseMatrix<Complex>().swap(K_PX_);
   }
   SparseCholesky& factor() { return chol_; }
   Index split_use(int j) const { return x_[j]; }
