@@ -240,6 +240,19 @@ void GaussNewton::linearise(const VectorXc& z, double s, VectorXc& g, double& en
           }
         }
       }
+      // The shape barrier's row of this triangle (real r, entries (l, conj(l))), when active.
+      double rb = 0;
+      std::array<Complex, 3> lb;
+      if (barrier_.row(t, zc[0], zc[1], zc[2], rb, lb)) {
+        energy += rb * rb;
+        for (int a = 0; a < 3; ++a) {
+          gl[a] += 2.0 * rb * std::conj(lb[static_cast<size_t>(a)]);
+          for (int b = a; b < 3; ++b) {
+            kl[a][b] += 2.0 * cmul(lb[static_cast<size_t>(a)], lb[static_cast<size_t>(b)]);
+            sl[a][b] += 2.0 * std::conj(lb[static_cast<size_t>(a)] * lb[static_cast<size_t>(b)]);
+          }
+        }
+      }
       const std::uint8_t* off = &block_offset_[9 * t];
       auto slot_of = [&](int a, int b) {
         const std::uint8_t o = off[3 * a + b];
@@ -260,7 +273,6 @@ void GaussNewton::linearise(const VectorXc& z, double s, VectorXc& g, double& en
       }
     }
   }
-  linearise_barrier(z, g, energy);
   if (B_ && B_->nonZeros()) {
     // The boundary term is complex-linear: B^H B (constant) and B^H (B z).
     Complex* kc = Kc_.valuePtr();
@@ -304,6 +316,7 @@ void GaussNewton::linearise_barrier(const VectorXc& z, VectorXc& g, double& ener
 }
 
 void GaussNewton::linearise_per_use(const VectorXc& z, double s, VectorXc& g, double& energy) {
+  linearise_barrier(z, g, energy);
   // The eq. 7 rows sum several triangles' predictions: entries by use, blocks found one by one.
   Complex* kc = Kc_.valuePtr();
   Complex* sv = S_.data();
@@ -366,6 +379,9 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, S
           ps.R += std::norm(q);
         }
       }
+      double rb = 0;
+      std::array<Complex, 3> lb;
+      if (barrier_.row(t, zc[0], zc[1], zc[2], rb, lb)) ps.barrier += rb * rb;
     }
   }
   if (B_ && B_->nonZeros()) {
@@ -373,7 +389,7 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, S
     e += eb;
     ps.P += eb;
   }
-  ps.barrier = barrier_energy(z);
+  if (form_ == Residual::PerUse) ps.barrier = barrier_energy(z);
   e += ps.barrier;
   if (rho_change) *rho_change = change;
   if (sums) *sums = ps;

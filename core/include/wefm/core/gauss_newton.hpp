@@ -119,7 +119,9 @@ class GaussNewton {
   double step(VectorXc& z, double s, double& energy_out);
   // The smallest t > 0 at which z + t dz flips a triangle that is positive in z (infinity if none).
   double first_flip(const VectorXc& z, const VectorXc& dz) const;
-  // The shape barrier's energy at z, and (with Kc_, S_, g) its rows added to the linearisation.
+  // The shape barrier's energy at z, and (with Kc_, S_, g) its rows added to the linearisation: a
+  // pass of their own for the per-use residual; the per-half-edge passes add them triangle by
+  // triangle as they go.
   double barrier_energy(const VectorXc& z) const;
   void linearise_barrier(const VectorXc& z, VectorXc& g, double& energy);
   // Projected CG on the step system; `Kc`, `S` are the (reduced) complex-linear and anti-linear
