@@ -234,6 +234,10 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
             sc = score_of(zc);
             const std::int64_t bad = last_quality.flips + last_quality.boundary_intersections;
             rank = Rank{bad == 0 ? 1 : 0, -bad, sc};
+            // Sides that land on each other (a flat ring: periodic with a zero shift, rotational by
+            // zero, free) are the scar, judged by rounding as touching or not: the scar candidate
+            // glues them exactly, and it alone may take that layout.
+            if (cand != EdgeMode::Scar && sides_coincide(r, zc)) rank = Rank{0, std::numeric_limits<std::int64_t>::min(), sc};
           } catch (const Error& err) {
             if (err.code() != Errc::singular) throw;
             sc = -std::numeric_limits<double>::infinity();
@@ -308,8 +312,13 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     // The s schedule: up to the target in s_step steps, or up to via_s and then back to the target.
     std::vector<double> schedule;
     const double s_top = in.via_s > opt.s ? in.via_s : opt.s;
-    for (double sv = 0; sv < s_top - 1e-12;) schedule.push_back(sv = std::min(s_top, sv + opt.s_step));
-    if (s_top > opt.s) schedule.push_back(opt.s);
+    if (s_top > opt.s) {
+      schedule.push_back(s_top);
+      const double down = std::min(opt.s_step, 0.5);
+      for (double sv = s_top; sv > opt.s + 1e-12;) schedule.push_back(sv = std::max(opt.s, sv - down));
+    } else {
+      for (double sv = 0; sv < s_top - 1e-12;) schedule.push_back(sv = std::min(s_top, sv + opt.s_step));
+    }
     double s_cur = 0;
     for (const double s_next : schedule) {
       const GaussNewtonReport gr = gn.run(z, s_next, opt.rho_tolerance, opt.max_rho_iterations, gauge.vector && s_next >= 1.0, [&](int it) {

@@ -48,6 +48,15 @@ Complex estimate_rotation(const RepeatedEdge& e, const VectorXc& z) {
   return r > 0 ? acc / r : Complex(1, 0);
 }
 
+bool sides_coincide(const RepeatedEdge& e, const VectorXc& z) {
+  double extent = 0, gap = 0;
+  for (size_t j = 0; j < e.side_a.size(); ++j) {
+    extent = std::max(extent, std::abs(z[e.side_a[j]] - z[e.side_a[0]]));
+    gap = std::max(gap, std::abs(z[e.side_a[j]] - z[e.side_b[j]]));
+  }
+  return gap <= 1e-6 * extent;
+}
+
 void glue_scars(const Topology& tp, const std::vector<EdgeMode>& modes, VectorXc& z) {
   for (const RepeatedEdge& r : tp.repeated) {
     if (modes[static_cast<size_t>(r.edge)] != EdgeMode::Scar) continue;

@@ -16,6 +16,10 @@ std::vector<LinearRow> repeated_edge_rows(const RepeatedEdge& edge, EdgeMode mod
 // cross each other, so a glued scar counted as a boundary self-intersection.
 void glue_scars(const Topology& tp, const std::vector<EdgeMode>& modes, VectorXc& z);
 
+// Whether the edge's two sides lie on each other in layout z: every pair of matching uses closer
+// than 1e-6 of the side's extent. Such a layout is the scar whatever mode produced it.
+bool sides_coincide(const RepeatedEdge& edge, const VectorXc& z);
+
 // Best rotation e^{i theta} taking side b's chain onto side a's in layout z (least squares).
 Complex estimate_rotation(const RepeatedEdge& edge, const VectorXc& z);
 
