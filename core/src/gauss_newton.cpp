@@ -409,31 +409,14 @@ double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) {
     R = accepted_sums_.R;
     Eb = accepted_sums_.barrier;
     accepted_sums_valid_ = false;
-  } else if (form_ == Residual::PerUse) {
-    for_each_row_split(z, s, [&](Complex p, Complex q, const Entry*, int) {
-      P += std::norm(p);
-      Q += (std::conj(p) * q).real();
-      R += std::norm(q);
-    });
   } else {
-    const size_t nt = tp_.corner_use.size() / 3;
-    for (size_t t = 0; t < nt; ++t) {
-      const Complex zc[3] = {z[tp_.corner_use[3 * t]], z[tp_.corner_use[3 * t + 1]], z[tp_.corner_use[3 * t + 2]]};
-      for (int j = 0; j < 3; ++j) {
-        const size_t h = 3 * t + static_cast<size_t>(j);
-        const Complex d = zc[(j + 1) % 3] - zc[j];
-        const double ad = std::max(std::sqrt(std::norm(d)), 1e-12);
-        const double mag = c_.beta[h] * ratio_pow(c_.length[h] / ad, s);
-        const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
-        const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());
-        P += std::norm(p);
-        Q += p.real() * q.real() + p.imag() * q.imag();
-        R += std::norm(q);
-      }
-    }
+    ScaleSums ps;
+    energy_at(z, s, nullptr, &ps);
+    P = ps.P;
+    Q = ps.Q;
+    R = ps.R;
+    Eb = ps.barrier;
   }
-  if (!known && B_ && B_->nonZeros()) P += ((*B_) * z).squaredNorm();
-  if (!known) Eb = barrier_energy(z);
   energy_after = P - 2 * Q + R + Eb;
   if (!(P > 0) || s <= 0) return 1.0;
   const double b = -(2 - s) * Q, c = (1 - s) * R, disc = b * b - 4 * P * c;
