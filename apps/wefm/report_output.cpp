@@ -72,6 +72,7 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
   j["regularised_triangles"] = r.degenerate_triangles;
   j["min_beta_raised"] = r.min_beta_raised != 0;
   j["boundary_unwind"] = number(r.boundary_unwind);
+  j["boundary_unwind_weight"] = number(r.boundary_unwind_weight);
   j["via_s"] = number(r.via_s);
   Json decisions = Json::array();
   for (const auto& d : snap.decisions) {

@@ -88,7 +88,7 @@ module wefm
     real(c_double) :: boundary_unwind
     integer(c_int32_t) :: auto_cut_edges, auto_cut_uncut_kept
     real(c_double) :: auto_cut_length, auto_cut_other_score
-    real(c_double) :: via_s
+    real(c_double) :: via_s, boundary_unwind_weight
   end type wefm_report
 
   type, bind(C) :: wefm_mesh_options

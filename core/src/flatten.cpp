@@ -430,12 +430,20 @@ FlattenResult flatten(const FlattenInput& in) {
   //    aims gentle turns at a fraction of their 3D value; the least unwinding that gives a valid
   //    layout at the target s wins. The bottle's thread face: valid only at s = 0 before
   //    unwinding (.37), valid at s = 1 with it (.98).
-  for (double unwind : {0.5, 0.25, 0.0}) {
-    if (!short_of_target(res)) break;
-    FlattenInput alt = in;
-    alt.unwind = unwind;
-    alt.boundary_weight_override = std::max(10.0, in.options.boundary_weight);
-    try_instead(alt, [unwind](SolveReport& r) { r.unwind = unwind; });
+  //    Where weight 10 is not enough, 30 (the two-turn helical strip at s = 2: the area term
+  //    coils it again at 10; at 30 it is valid, .928, where it came back at s = 1 before).
+  for (double weight : {10.0, 30.0}) {
+    if (weight < in.options.boundary_weight) continue;
+    for (double unwind : {0.5, 0.25, 0.0}) {
+      if (!short_of_target(res)) break;
+      FlattenInput alt = in;
+      alt.unwind = unwind;
+      alt.boundary_weight_override = weight;
+      try_instead(alt, [unwind, weight](SolveReport& r) {
+        r.unwind = unwind;
+        r.unwind_weight = weight;
+      });
+    }
   }
   return res;
 }

@@ -72,6 +72,15 @@ inline TriMesh saddle(int n = 20) {
 
 namespace wefm::test {
 
+// A helicoid strip: `turns` turns between radii r0 and r1, rising `pitch` per turn (u around, v
+// across). Its inner side is much shorter than its outer side, so low-distortion layouts coil.
+inline TriMesh helicoid_strip(int n, int m, double turns = 2.0, double r0 = 1.0, double r1 = 1.8, double pitch = 0.9) {
+  return grid(n, m, [=](double u, double v) {
+    const double a = 2 * kPi * turns * u, r = r0 + (r1 - r0) * v;
+    return Vec3(r * std::cos(a), r * std::sin(a), pitch * turns * u);
+  });
+}
+
 // An open cylinder as an annulus (rows on circles, straight generators): exactly developable.
 // `seam` receives the facet edges along the generator at angle 0.
 inline TriMesh open_cylinder(int n, int m, std::vector<std::pair<Index, Index>>* seam = nullptr, double r = 1.0, double h = 2.0) {

@@ -102,15 +102,32 @@ TEST_CASE("a caller's pin holds through the continuation, with and without a sea
 
 TEST_CASE("a helicoid strip of two turns, whose low-distortion layout coils over itself, comes out valid") {
   // r in [1, 1.5], two turns, pitch 0.2: its sides curve one way for more than a full turn.
-  const TriMesh strip = test::grid(120, 4, [](double u, double v) {
-    const double t = 4 * kPi * u, r = 1.0 + 0.5 * v;
-    return Vec3(r * std::cos(t), r * std::sin(t), 0.2 * t);
-  });
+  const TriMesh strip = test::helicoid_strip(120, 4, 2.0, 1.0, 1.5, 0.4 * kPi);
   const auto r = test::solve(strip, Options());
   MESSAGE("helicoid strip: score " << r.report.quality.score << ", unwind " << r.report.unwind);
   CHECK(r.report.quality.flips == 0);
   CHECK(r.report.quality.boundary_intersections == 0);
   CHECK(r.report.unwind < 1.0);  // the first layout overlapped: the straightened one was kept
+}
+
+TEST_CASE("a helicoid strip that coils over itself comes back valid at the s asked, unwound") {
+  // Two turns between radii 1 and 1.8: the inner side is 0.56 of the outer, so the layout curls
+  // more than a turn and overlaps its own boundary. The unwinding retries straighten gentle
+  // turns; at 120 segments weight 10 is not enough at s = 1 or 2, weight 30 is.
+  for (double s : {1.0, 2.0}) {
+    CAPTURE(s);
+    Face f;
+    f.set_mesh(test::helicoid_strip(120, 6));
+    f.set_options(test::with_s(s));
+    const auto& r = test::solve_allowing_cap(f);
+    MESSAGE("helicoid strip at s = " << s << ": score " << r.report.quality.score << ", unwind " << r.report.unwind << " at weight " << r.report.unwind_weight);
+    CHECK(r.report.s == doctest::Approx(s));
+    CHECK(r.report.quality.flips == 0);
+    CHECK(r.report.quality.boundary_intersections == 0);
+    CHECK(r.report.unwind < 1.0);
+    CHECK(r.report.unwind_weight == doctest::Approx(30.0));
+    CHECK(r.report.quality.score > 0.8);
+  }
 }
 
 namespace {

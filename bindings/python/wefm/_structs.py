@@ -141,6 +141,7 @@ class Report(ctypes.Structure):
         ("auto_cut_length", c_double),
         ("auto_cut_other_score", c_double),
         ("via_s", c_double),
+        ("boundary_unwind_weight", c_double),
     ]
 
 

@@ -572,6 +572,8 @@ typedef struct wefm_report {
                                       auto_cut_uncut_kept); NaN if not computed */
   double via_s;                  /**< 0, or 2 when the continuation to the target s ended invalid and this
                                       layout came back down to it from s = 2 */
+  double boundary_unwind_weight; /**< 0, or the boundary-term weight of the unwinding retry that gave this
+                                      layout (see boundary_unwind: 10, or 30 where 10 was not enough) */
 } wefm_report;
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */

@@ -42,6 +42,7 @@ struct SolveReport {
   double auto_cut_other_score = std::nan("");  // annulus: score of the layout not kept (uncut or cut)
   bool min_beta_raised = false;  // the first layout was invalid; this one used a stronger beta floor
   double unwind = 1.0;           // < 1: the first layout overlapped itself; this one straightened gentle boundary turns
+  double unwind_weight = 0;      // the boundary weight of that unwinding retry (0: none)
   double via_s = 0;              // > s: the first layout was invalid at s; this one came back down from via_s
   Index degenerate_triangles = 0;
   Timings time;
