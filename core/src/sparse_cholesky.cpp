@@ -181,7 +181,8 @@ bool SparseCholeskyT<Scalar>::keep_single_precision() {
     // The converted factor stays in CHOLMOD's value array, which CHOLMOD still takes for a numeric
     // factor: solve() never hands it to CHOLMOD while the float factor is in use, and the next
     // factorize overwrites every entry (it clears each supernode before assembling it).
-    // Its second half is given back to the system: 1M-triangle disk, s = 1, peak 1349 -> 1294 MB.
+    // Its second half is given back to the system: 1M-triangle disk, s = 1, peak 1271 MB against
+    // 1349 MB without (1340 MB with the double factor).
     impl_->single.release_unused();
     counters_.time_factorization += now() - t0;
     return true;
