@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #ifdef __linux__
 #include <sys/mman.h>
 #include <unistd.h>
@@ -262,7 +262,8 @@ void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<do
     std::complex<double>* xc = x + static_cast<size_t>(c) * n;
     double big = 0;
     for (int k = 0; k < n; ++k) big = std::max(big, std::max(std::abs(bc[k].real()), std::abs(bc[k].imag())));
-    if (!std::isfinite(big) || big == 0) {  // a residual with NaN or inf gives NaN, as in double; zero gives zero
+    // An infinite entry gives NaN, as in double (NaN entries go through the kernels as NaN); zero, zero.
+    if (!std::isfinite(big) || big == 0) {
       std::fill(xc, xc + n, big == 0 ? std::complex<double>(0, 0) : std::complex<double>(std::numeric_limits<double>::quiet_NaN(), 0));
       continue;
     }
@@ -282,7 +283,7 @@ void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<do
 #else
   (void)b;
   (void)x;
-  (void)cols;  // assign() never succeeds without the kernels
+  (void)cols;  // convert_in_place() never succeeds without the kernels
 #endif
 }
 
