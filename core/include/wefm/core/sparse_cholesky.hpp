@@ -41,6 +41,14 @@ class SparseCholeskyT {
   Dense solve(const Dense& rhs);
   // Frees the factor (counters stay); the next factorize analyses again.
   void release();
+  // For a factor that only preconditions from now on: after factorize (and any solve that needs
+  // the double factor), converts the factor to single precision in place
+  // (float_supernodal_solve.hpp); the following solve() calls use it, until the next factorize
+  // brings the double factor back. Only CHOLMOD's supernodal factors with at least
+  // float_factor_min_entries() entries qualify, where the CPU has the float kernels; returns
+  // whether the float factor is in use (false: the double factor stays as it was).
+  bool keep_single_precision();
+  bool single_precision() const;
   // Options::threads. With threads <= 1 CHOLMOD's OpenMP loops run on the calling thread alone:
   // its supernodal factorisation opens a region of 4 threads (a compile-time constant of the
   // library) per large supernode, and on 2 cores their wake-ups cost 1.4 s of CPU time in a
