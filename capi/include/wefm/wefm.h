@@ -38,7 +38,12 @@
  *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
  *              With wefm_options.threads <= 1 the library starts no threads of its own; with more,
  *              a solve runs its coefficients and assembly on that many short-lived threads (joined
- *              before it returns; results are bit-identical for any count). The OpenBLAS under
+ *              before it returns; coefficients and matrices are bit-identical for any count). The
+ *              factorisation's BLAS and OpenMP loops sum in an order that depends on the count, so
+ *              layouts differ by rounding between counts (each count is repeatable), and the
+ *              continuation's stopping tests can carry that up to the size of its tolerances:
+ *              sphere_small_hole, 1 against 2 threads, largest UV difference over the extent
+ *              7e-15 at s = 0, 5e-6 at s = 1, 1.2e-3 at s = 2. The OpenBLAS under
  *              CHOLMOD keeps a thread pool from load time; a solve sets it to wefm_options.threads
  *              (0 = 1) threads, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether).
  *              With threads <= 1, CHOLMOD's own OpenMP loops run on the solving thread alone
