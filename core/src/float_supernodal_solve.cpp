@@ -133,6 +133,15 @@ WEFM_AVX2 inline void dot_conj(const float* l, const float* w, int m, float& re,
   im = horizontal_sum(_mm256_mul_ps(_mm256_add_ps(b0, b1), sign));
 }
 
+// A supernode's rows of x into g: its own columns (contiguous from k1) first, then the rest.
+inline void gather(const float* x, const int* rows, int k1, int nc, int nr, float* g) {
+  std::memcpy(g, x + 2 * k1, sizeof(float) * 2 * static_cast<size_t>(nc));
+  for (int i = nc; i < nr; ++i) {
+    g[2 * i] = x[2 * rows[i]];
+    g[2 * i + 1] = x[2 * rows[i] + 1];
+  }
+}
+
 // L y = b, then L^H x = y, in place on x (length n, in the factor's order). The diagonal entry of
 // each column holds 1 / L_jj (see assign). Each supernode's rows are gathered into g (its own
 // columns first, contiguous in x), its columns applied there, and scattered back.
@@ -141,11 +150,7 @@ WEFM_AVX2 void solve_avx2(const SupernodalView& f, const float* values, float* x
     const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
     const int* rows = f.s + f.pi[sn];
     const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
-    std::memcpy(g, x + 2 * k1, sizeof(float) * 2 * static_cast<size_t>(nc));
-    for (int i = nc; i < nr; ++i) {
-      g[2 * i] = x[2 * rows[i]];
-      g[2 * i + 1] = x[2 * rows[i] + 1];
-    }
+    gather(x, rows, k1, nc, nr, g);
     for (int j = 0; j < nc; ++j) {
       const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
       const float yr = g[2 * j] * col[0], yi = g[2 * j + 1] * col[0];
@@ -163,11 +168,7 @@ WEFM_AVX2 void solve_avx2(const SupernodalView& f, const float* values, float* x
     const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
     const int* rows = f.s + f.pi[sn];
     const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
-    std::memcpy(g, x + 2 * k1, sizeof(float) * 2 * static_cast<size_t>(nc));
-    for (int i = nc; i < nr; ++i) {
-      g[2 * i] = x[2 * rows[i]];
-      g[2 * i + 1] = x[2 * rows[i] + 1];
-    }
+    gather(x, rows, k1, nc, nr, g);
     for (int j = nc - 1; j >= 0; --j) {
       const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
       float re, im;
