@@ -59,6 +59,7 @@ std::vector<OptionSpec> solver_option_specs() {
        true},
       {"auto-cut", 0, "", "cut annuli and closed genus-0 faces automatically (no --seams/--topology)", d.auto_cut ? "on" : "off", false},
       {"threads", 0, "N", "worker threads for assembly/quality (0 = 1)", std::to_string(d.threads), false},
+      {"memory-limit", 0, "MB", "refuse a solve estimated above MB megabytes (exit 5; 0 = no limit)", num(d.memory_limit_mb), false},
       {"score-threshold", 0, "T", "stop after the conformal solve if its score >= T (2 = never)",
        num(d.score_threshold), false},
       {"outer-loop", 0, "N", "outer loop: loop index of --topology, else boundary-cycle index; -1 automatic",
@@ -74,7 +75,8 @@ bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std
       !get_double(args, "s-step", o.s_step, error) || !get_double(args, "rho-tolerance", o.rho_tolerance, error) ||
       !get_int(args, "max-rho-iterations", o.max_rho_iterations, error) ||
       !get_double(args, "min-beta", o.min_beta, error) || !get_int(args, "threads", o.threads, error) ||
-      !get_double(args, "score-threshold", o.score_threshold, error))
+      !get_double(args, "score-threshold", o.score_threshold, error) ||
+      !get_double(args, "memory-limit", o.memory_limit_mb, error))
     return false;
   if (args.has("no-curvature-adjust")) o.curvature_adjust = 0;
   if (args.has("auto-cut")) o.auto_cut = 1;

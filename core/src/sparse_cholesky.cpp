@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <chrono>
 #include <limits>
+#include <string>
 #include <type_traits>
 #include <dlfcn.h>
 
@@ -72,6 +73,13 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> {
 };
 #endif
 
+// Eigen's LDLT with its factor's pattern in reach: the analysis sizes it (memory_limit_mb).
+template <class Matrix>
+class EigenLDLT : public Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> {
+ public:
+  std::size_t factor_entries() const { return static_cast<std::size_t>(this->m_matrix.nonZeros() + this->m_matrix.rows()); }
+};
+
 template <class Scalar>
 struct SparseCholeskyT<Scalar>::Impl {
   bool use_cholmod = false;
@@ -79,7 +87,7 @@ struct SparseCholeskyT<Scalar>::Impl {
   CholmodLLT<Matrix> cholmod;
 #endif
   FloatSupernodalFactor single;  // when keep_single_precision() took the factor over
-  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  EigenLDLT<Matrix> ldlt;
 
   explicit Impl(bool cholmod_wanted) : use_cholmod(cholmod_wanted) {
 #ifdef WEFM_HAVE_CHOLMOD
@@ -122,6 +130,15 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
       impl_->ldlt.analyzePattern(K);
     ++counters_.analyses;
     counters_.time_analysis += now() - t0;
+    if (limit_mb_ > 0) {
+      const double mb = other_mb_ + 1e-6 * static_cast<double>(sizeof(Scalar)) * static_cast<double>(factor_entries());
+      if (mb > limit_mb_) {
+        pattern_outer_.clear();  // analyse again next time: the limit may have been raised
+        fail(Errc::out_of_memory, "the solve is estimated at " + std::to_string(static_cast<long long>(mb + 0.5)) +
+                                      " MB (factor " + std::to_string(factor_entries()) + " entries), above memory_limit_mb " +
+                                      std::to_string(static_cast<long long>(limit_mb_)));
+      }
+    }
   }
   const double t0 = now();
   Eigen::ComputationInfo info;
@@ -155,6 +172,17 @@ void SparseCholeskyT<Scalar>::release() {
   pattern_outer_.clear();
   pattern_inner_.clear();
   n_ = 0;
+}
+
+template <class Scalar>
+std::size_t SparseCholeskyT<Scalar>::factor_entries() const {
+#ifdef WEFM_HAVE_CHOLMOD
+  if (impl_->use_cholmod) {
+    const cholmod_factor* L = impl_->cholmod.factor();
+    return L ? L->xsize : 0;
+  }
+#endif
+  return impl_->ldlt.factor_entries();
 }
 
 template <class Scalar>

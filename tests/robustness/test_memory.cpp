@@ -92,3 +92,37 @@ TEST_CASE("a solve under a memory cap fails cleanly and keeps the previous resul
     CHECK(wefm_face_solve(f) == WEFM_OK);  // memory back: the same face solves
   }
 }
+
+TEST_CASE("memory_limit_mb refuses a solve estimated above it before factorising; the previous result stays") {
+  // 60 x 60 cells: about 7,200 triangles, a factor of some 10^5 entries (a few MB with the rest).
+  for (int solver : {WEFM_SOLVER_EIGEN, WEFM_SOLVER_CHOLMOD}) {
+    if (solver == WEFM_SOLVER_CHOLMOD && !wefm_has_suitesparse()) continue;
+    CAPTURE(solver);
+    Face f(cap(60));
+    REQUIRE(f.last == WEFM_OK);
+    wefm_options o = options();
+    o.solver = solver;
+    o.s = 1;
+    REQUIRE(wefm_face_set_options(f, &o) == WEFM_OK);
+    REQUIRE(wefm_face_solve(f) == WEFM_OK);
+    wefm_report before;
+    wefm_report_init(&before);
+    REQUIRE(wefm_face_get_report(f, &before) == WEFM_OK);
+    o.memory_limit_mb = 1;  // below any estimate: refused, whatever the face
+    REQUIRE(wefm_face_set_options(f, &o) == WEFM_OK);
+    CHECK(wefm_face_solve(f) == WEFM_ERROR_OUT_OF_MEMORY);
+    const std::string msg = f.error();
+    MESSAGE(msg);
+    CHECK(msg.find("memory_limit_mb") != std::string::npos);
+    int32_t solved = 0;
+    wefm_face_has_result(f, &solved);
+    CHECK(solved == 1);  // the previous result stays
+    wefm_report after;
+    wefm_report_init(&after);
+    REQUIRE(wefm_face_get_report(f, &after) == WEFM_OK);
+    CHECK(after.score == before.score);
+    o.memory_limit_mb = 1e5;  // far above: the same solve goes through
+    REQUIRE(wefm_face_set_options(f, &o) == WEFM_OK);
+    CHECK(wefm_face_solve(f) == WEFM_OK);
+  }
+}

@@ -2,7 +2,9 @@
 // Cholesky factorisation of a Hermitian positive definite sparse matrix, through CHOLMOD when the
 // build has it and Eigen's SimplicialLDLT otherwise. Symbolic analysis and numeric factorisation
 // are separate so callers with a fixed sparsity pattern analyse once; counters prove it.
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "wefm/core/types.hpp"
 
@@ -54,6 +56,15 @@ class SparseCholeskyT {
   // library) per large supernode, and on 2 cores their wake-ups cost 1.4 s of CPU time in a
   // 1M-triangle s = 1 solve (2 factorisations; 14.9 -> 13.5 s), for the same bits.
   void set_threads(int threads) { threads_ = threads; }
+  // Options::memory_limit_mb: after each symbolic analysis, a factor whose values together with
+  // `other_mb` (the rest of the solve, estimated by the caller) would exceed limit_mb is refused
+  // with Error(out_of_memory) before anything is allocated for it. limit_mb 0: no limit.
+  void set_memory_limit(double limit_mb, double other_mb) {
+    limit_mb_ = limit_mb;
+    other_mb_ = other_mb;
+  }
+  // Entries of the factor found by the last analysis (CHOLMOD's L->xsize; Eigen: L and D).
+  std::size_t factor_entries() const;
   Index size() const { return n_; }
   FactorCounters& counters() { return counters_; }
 
@@ -63,6 +74,7 @@ class SparseCholeskyT {
   FactorCounters counters_;
   Index n_ = 0;
   int threads_ = 1;
+  double limit_mb_ = 0, other_mb_ = 0;
   std::vector<int> pattern_outer_, pattern_inner_;
 };
 
