@@ -136,10 +136,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
   PartitionedKKT kkt(opt.backend);
   kkt.factor().set_threads(opt.threads);
-  // memory_limit_mb: the factor's values (from the analysis) plus 1 KB per triangle for the rest.
-  // Measured peaks of whole solves, 1M-triangle disk and plate, s = 0, 1, 2: 0.75-1.01 KB per
-  // triangle besides the factor, so the estimate is within -1% .. +20% of the peak there.
-  const double other_mb = 1e-3 * static_cast<double>(mesh.triangles.size());
+  // memory_limit_mb: the factor's values (CHOLMOD's xsize from the analysis) plus 0.75 KB per
+  // triangle for the rest. Measured peaks of whole `wefm flatten` runs, 1M-triangle disk (factor
+  // 34.1M entries) and plate (26.7M), s = 0, 1, 2: 0.59-0.85 KB per triangle besides the factor,
+  // so the estimate (disk 1295 MB, plate 1177 MB) is within -8% .. +16% of the peak there.
+  const double other_mb = 0.75e-3 * static_cast<double>(mesh.triangles.size());
   kkt.factor().set_memory_limit(opt.memory_limit_mb, other_mb);
   stage.check(0.1, "factorise");
   kkt.set_matrix(K, split.first, split.second);

@@ -222,9 +222,9 @@ typedef struct wefm_options {
   int threads;               /**< threads for coefficients, assembly and the BLAS under CHOLMOD during a solve (0 = 1). Default 0 */
   double memory_limit_mb;    /**< refuse solves estimated above this many MB with WEFM_ERROR_OUT_OF_MEMORY,
                                   before the factor is allocated (0 = no limit). The estimate: the
-                                  factor's values as the symbolic analysis sizes them, plus 1 KB per
-                                  triangle for the rest (within -1% .. +20% of the measured peak of
-                                  1M-triangle solves at s = 0, 1, 2). Default 0 */
+                                  factor's values as the symbolic analysis sizes them, plus 0.75 KB
+                                  per triangle for the rest (within -8% .. +16% of the measured peak
+                                  of 1M-triangle solves at s = 0, 1, 2). Default 0 */
   double min_beta;           /**< altitude/base floor for degenerate triangles (> 0). Default 1e-3 */
   int residual;              /**< wefm_residual. Default WEFM_RESIDUAL_PER_HALF_EDGE */
 } wefm_options;
