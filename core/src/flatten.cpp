@@ -98,7 +98,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     EdgeMode m = it != in.edge_modes.end() ? it->second : opt.default_edge_mode;
     if (m == EdgeMode::Auto) {
       auto_edges.push_back(r.edge);
-      m = EdgeMode::Free;
+      // An interior slit (both ends shared by its two sides) starts glued: started free, the
+      // slits that do not want to open leave gaps of zero width, judged crossing or not by
+      // rounding, and the descent took another path on another BLAS kernel (8-slit plate).
+      const bool slit = !r.side_a.empty() && r.side_a.front() == r.side_b.front() && r.side_a.back() == r.side_b.back();
+      m = slit ? EdgeMode::Scar : EdgeMode::Free;
     }
     mode[static_cast<size_t>(r.edge)] = m;
   }
