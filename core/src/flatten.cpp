@@ -101,7 +101,11 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       // An interior slit (both ends shared by its two sides) starts glued: started free, the
       // slits that do not want to open leave gaps of zero width, judged crossing or not by
       // rounding, and the descent took another path on another BLAS kernel (8-slit plate).
-      const bool slit = !r.side_a.empty() && r.side_a.front() == r.side_b.front() && r.side_a.back() == r.side_b.back();
+      // Not a seam that is the outer loop itself (a full sphere's pole-to-pole seam): there the
+      // glued start is a closed surface, and the continuation converged less often from it.
+      const auto& outer = tp.loop_uses[static_cast<size_t>(tp.outer_loop)];
+      const bool slit = !r.side_a.empty() && r.side_a.front() == r.side_b.front() && r.side_a.back() == r.side_b.back() &&
+                        std::find(outer.begin(), outer.end(), r.side_a.front()) == outer.end();
       m = slit ? EdgeMode::Scar : EdgeMode::Free;
     }
     mode[static_cast<size_t>(r.edge)] = m;
