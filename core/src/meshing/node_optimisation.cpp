@@ -4,22 +4,16 @@
 #include <cmath>
 
 #include "wefm/core/meshing/mesh_quality.hpp"
+#include "wefm/core/meshing/node_triangles.hpp"
 
 namespace wefm::meshing {
 
 std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<std::array<Index, 3>>& tris, Index fixed,
                             const SurfaceMap& map, double floor) {
   const size_t n = uv.size();
-  // Triangles around each node, in one array (counting sort by node).
-  std::vector<Index> start(n + 1, 0), items(3 * tris.size());
-  for (const auto& t : tris)
-    for (Index v : t) start[static_cast<size_t>(v) + 1]++;
-  for (size_t k = 1; k <= n; ++k) start[k] += start[k - 1];
-  {
-    std::vector<Index> fill(start.begin(), start.end() - 1);
-    for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
-      for (Index v : tris[static_cast<size_t>(t)]) items[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = t;
-  }
+  const NodeTriangles around = node_triangles(n, tris);
+  const std::vector<Index>& start = around.start;
+  const std::vector<Index>& items = around.items;
   struct Star {
     double sum, worst;
   };

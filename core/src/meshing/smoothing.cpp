@@ -6,6 +6,7 @@
 
 #include "wefm/core/meshing/mesh_quality.hpp"
 #include "wefm/core/meshing/node_optimisation.hpp"
+#include "wefm/core/meshing/node_triangles.hpp"
 
 namespace wefm::meshing {
 namespace {
@@ -30,15 +31,9 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
   // reversed. Flipped triangles are marked and left alone for the rest of the pass, so the stale
   // lists never mislead. A hash of all edges cost 20 % of meshing time on a 145k-triangle square.
   const size_t nv = uv.size();
-  std::vector<Index> start(nv + 1, 0), items(3 * tris.size());
-  for (const Tri3& T : tris)
-    for (Index v : T) start[static_cast<size_t>(v) + 1]++;
-  for (size_t k = 1; k <= nv; ++k) start[k] += start[k - 1];
-  {
-    std::vector<Index> fill(start.begin(), start.end() - 1);
-    for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
-      for (Index v : tris[static_cast<size_t>(t)]) items[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = t;
-  }
+  const NodeTriangles around = node_triangles(nv, tris);
+  const std::vector<Index>& start = around.start;
+  const std::vector<Index>& items = around.items;
   std::vector<char> touched(tris.size(), 0);
   std::int64_t flips = 0;
   for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
