@@ -236,8 +236,15 @@ typename SparseCholeskyT<Scalar>::Dense SparseCholeskyT<Scalar>::solve(const Den
     return x;
   }
 #ifdef WEFM_HAVE_CHOLMOD
-  if (impl_->use_cholmod) x = impl_->cholmod.solve(rhs);
-  else
+  if (impl_->use_cholmod) {
+    // Eigen's wrapper notes a failed cholmod_solve (its workspace could not be allocated) in
+    // info() and leaves the result unset: it must not reach the caller as a layout.
+    x = impl_->cholmod.solve(rhs);
+    if (impl_->cholmod.info() != Eigen::Success) {
+      if (impl_->cholmod.cholmod().status == CHOLMOD_OUT_OF_MEMORY) fail(Errc::out_of_memory, "out of memory in the sparse Cholesky solve");
+      fail(Errc::internal, "the sparse Cholesky solve failed (CHOLMOD status " + std::to_string(impl_->cholmod.cholmod().status) + ")");
+    }
+  } else
 #endif
     x = impl_->ldlt.solve(rhs);
   counters_.solves += rhs.cols();
