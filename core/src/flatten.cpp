@@ -173,13 +173,17 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     vec.rhs = L;
   }
   stage.check(0.2, "solve");
-  VectorXc z = kkt.solve(rows_with(mode, rotation, gauge.vector ? &vec : nullptr), eta_ptr);
+  // With a vector gauge this first layout only locates the far pair below: not refined.
+  VectorXc z = kkt.solve(rows_with(mode, rotation, gauge.vector ? &vec : nullptr), eta_ptr, !gauge.vector);
   recentre(z);
   if (gauge.vector) {
     // Fixing one short facet edge lets its local error tilt the whole layout; fix the vector
     // between two far-apart boundary uses instead. Same factorisation.
     const auto fp = far_pair(tp, z, tp.outer_loop);
-    if (fp.first != fp.second) {
+    if (fp.first == fp.second) {
+      z = kkt.solve(rows_with(mode, rotation, &vec), eta_ptr);
+      recentre(z);
+    } else {
       vec.terms = {{fp.second, 1.0}, {fp.first, -1.0}};
       vec.rhs = z[fp.second] - z[fp.first];
       pin.terms = {{fp.first, 1.0}};

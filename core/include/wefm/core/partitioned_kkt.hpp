@@ -30,7 +30,9 @@ class PartitionedKKT {
   // with a pin and shifting afterwards: the dense eta row makes the reduced system ill-conditioned
   // (eta^T K_PP^{-1} eta is huge), which costs accuracy.
   // Throws Error(singular) when the constraints contradict each other.
-  VectorXc solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta);
+  // `refine` = false skips iterative refinement (two solves a round) for a layout that only guides
+  // a choice, such as the first gauge's, which only locates two far-apart boundary uses.
+  VectorXc solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, bool refine = true);
 
   // Precompute the columns for every use in `uses` (so later solves touching them are cheap).
   void prepare(const std::vector<Index>& uses, const Eigen::VectorXd* eta);
@@ -47,7 +49,7 @@ class PartitionedKKT {
     unit_.clear();
     cache_valid_ = false;
     // Swapped with empty matrices: Eigen 3.4's sparse assignment keeps the old storage.
-    SpMatC().swap(K_);
+    SpMatC().swap(Kpp_);
     Eigen::SparseMatrix<Complex>().swap(K_PX_);
   }
   SparseCholesky& factor() { return chol_; }
@@ -63,13 +65,16 @@ class PartitionedKKT {
   VectorXc eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f, const Eigen::VectorXcd& d,
                      Eigen::VectorXcd& lambda, bool check);
   Index p_index(Index use) const { return p_of_[static_cast<size_t>(use)]; }
+  VectorXc apply_k(const VectorXc& z) const;
 
   SparseCholesky chol_;
   Index n_ = 0, x_[2] = {-1, -1};
   std::vector<Index> p_of_;     // use -> index in P, or -1 for x0/x1
   Eigen::SparseMatrix<Complex> K_PX_;  // |P| x 2
   Eigen::Matrix2cd K_XX_;
-  SpMatC K_;  // the whole matrix, for the residuals of iterative refinement
+  // K's blocks: K_PP (factorised, and with K_PX, K_XX the residuals of iterative refinement).
+  SpMatC Kpp_;
+  double kscale_ = 0;  // max |K_ii|: the size residuals are judged against
   // cache
   bool cache_valid_ = false;
   const Eigen::VectorXd* cache_eta_ = nullptr;
