@@ -1,4 +1,5 @@
 #include "wefm/core/coefficients.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -20,14 +21,16 @@ Coefficients compute_coefficients(const TriMesh& m, const Topology& tp, bool cur
     for (int j = 0; j < 3; ++j) total += (vertex(t, (j + 1) % 3) - vertex(t, j)).norm();
   c.length_scale = total > 0 ? total / static_cast<double>(nh) : 1.0;
   const double inv = 1.0 / c.length_scale;
-  c.alpha.resize(nh);
-  c.beta.resize(nh);
-  c.length.resize(nh);
-  c.corner_angle.resize(nh);
+  for (std::vector<double>* v : {&c.alpha, &c.beta, &c.length, &c.corner_angle}) {
+    reserve_huge(*v, nh);
+    v->resize(nh);
+  }
   c.tri_area.resize(nt);
   c.use_angle.assign(static_cast<size_t>(tp.use_count), 0.0);
   c.use_area.assign(static_cast<size_t>(tp.use_count), 0.0);
-  std::vector<double> raw_beta(nh);
+  std::vector<double> raw_beta;
+  reserve_huge(raw_beta, nh);
+  raw_beta.resize(nh);
   std::atomic<Index> degenerate{0};
   parallel_for(threads, static_cast<Index>(nt), [&](Index t0, Index t1) {
     Index zero_area = 0;

@@ -1,4 +1,5 @@
 #include "wefm/core/energy.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -69,7 +70,9 @@ constexpr Index kColumnBlock = 8192;
 }  // namespace
 
 std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s, int threads) {
-  std::vector<Complex> sigma(c.alpha.size());
+  std::vector<Complex> sigma;
+  reserve_huge(sigma, c.alpha.size());
+  sigma.resize(c.alpha.size());
   const bool use_rho = s != 0.0 && !rho.empty();
   parallel_for(threads, static_cast<Index>(sigma.size()), [&](Index h0, Index h1) {
     for (size_t h = static_cast<size_t>(h0); h < static_cast<size_t>(h1); ++h)

@@ -1,4 +1,5 @@
 #include "wefm/core/energy_assembler.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
 
@@ -120,6 +121,7 @@ SpMatC EnergyAssembler::assemble(const std::vector<double>& w, const std::vector
   const Index nt = static_cast<Index>(tp.corner_use.size() / 3);
   SpMatC K(n, n);
   K.resizeNonZeros(static_cast<Index>(row_.size()));
+  advise_huge_pages_sparse(K);
   std::copy(outer_.begin(), outer_.end(), K.outerIndexPtr());
   std::copy(row_.begin(), row_.end(), K.innerIndexPtr());
   Complex* value = K.valuePtr();

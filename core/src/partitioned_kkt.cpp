@@ -1,4 +1,5 @@
 #include "wefm/core/partitioned_kkt.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -30,6 +31,7 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1) {
   K_XX_.setZero();
   Kpp_.resize(np, np);
   Kpp_.resizeNonZeros(K.nonZeros());
+  advise_huge_pages_sparse(Kpp_);
   int* po = Kpp_.outerIndexPtr();
   int* pi = Kpp_.innerIndexPtr();
   Complex* pv = Kpp_.valuePtr();

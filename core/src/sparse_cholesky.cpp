@@ -9,6 +9,7 @@
 
 #include "wefm/core/error.hpp"
 #include "wefm/core/float_supernodal_solve.hpp"
+#include "wefm/core/huge_pages.hpp"
 #ifdef WEFM_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #endif
@@ -93,6 +94,7 @@ struct SparseCholeskyT<Scalar>::Impl {
 #ifdef WEFM_HAVE_CHOLMOD
     // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
     cholmod.cholmod().print = 0;
+    if (use_cholmod) use_huge_pages_in_suitesparse();
     // Ordering: CHOLMOD's default (AMD, then METIS when AMD's fill looks high) picks METIS on
     // our faces. Measured at 1M triangles: AMD alone analyses in 0.18 s but factorises in 2.9 s
     // with a 1.71 GB peak; METIS analyses in 2.0 s, factorises in 1.35 s, peak 1.35 GB. The
