@@ -1,4 +1,5 @@
 #include "wefm/core/trimesh.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -98,6 +99,7 @@ MeshStats compute_stats(const TriMesh& m) {
   const EdgeBuckets eb = half_edges_by_edge(good, static_cast<Index>(nv));
   HalfEdges he;
   he.vertex_count = static_cast<Index>(nv);
+  reserve_huge(he.twin, eb.entries.size());
   he.twin.assign(eb.entries.size(), -1);
   UnionFind comp(static_cast<Index>(good.size()));
   std::int64_t edges = 0, boundary_edges = 0;

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "wefm/core/error.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 namespace wefm::io {
 
@@ -31,6 +32,7 @@ FileBuffer::FileBuffer(const std::string& path) {
   // Regular files: one allocation of the right size. Pipes and devices report no size: grow.
   std::size_t capacity = S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) + 1 : std::size_t{1} << 20;
   data_.reset(new char[capacity]);
+  advise_huge_pages(data_.get(), capacity);  // a 1M-triangle OBJ is 51 MB: 12k page faults in 4 KB pages
   while (true) {
     if (size_ + 1 >= capacity) {
       if (S_ISREG(st.st_mode) && size_ + 1 == capacity) {

@@ -5,6 +5,7 @@
 #include "file_buffer.hpp"
 #include "text_scan.hpp"
 #include "wefm/core/error.hpp"
+#include "wefm/core/huge_pages.hpp"
 
 namespace wefm::io {
 
@@ -25,8 +26,8 @@ ReadResult read_obj(const std::string& path) {
   auto& triangles = r.mesh.triangles;
   // A typical line is 25-40 bytes and a closed-ish mesh has twice as many triangles as vertices:
   // reserving from the size avoids most regrowth without a counting pass.
-  vertices.reserve(file.size() / 100);
-  triangles.reserve(file.size() / 50);
+  reserve_huge(vertices, file.size() / 100);
+  reserve_huge(triangles, file.size() / 50);
   std::vector<Index> poly;
   std::size_t line = 0;
   while (p < end) {
