@@ -95,10 +95,15 @@ struct SparseCholeskyT<Scalar>::Impl {
     // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
     cholmod.cholmod().print = 0;
     if (use_cholmod) use_huge_pages_in_suitesparse();
-    // Ordering: CHOLMOD's default (AMD, then METIS when AMD's fill looks high) picks METIS on
-    // our faces. Measured at 1M triangles: AMD alone analyses in 0.18 s but factorises in 2.9 s
-    // with a 1.71 GB peak; METIS analyses in 2.0 s, factorises in 1.35 s, peak 1.35 GB. The
-    // factor is refactorised several times per solve (continuation), so METIS's cost is repaid.
+    // Ordering: CHOLMOD's default (AMD, then METIS when AMD's fill looks high). On the 1M disk
+    // AMD's fill is high in wefm's use numbering (44M factor entries, 29 GFlop) and METIS is
+    // taken (25M, 7.4 GFlop; 3.2-3.9 s of analysis on a 2-core EPYC, 2.0 s on a Xeon, against
+    // 0.36 s for AMD, repaid by every refactorisation); on the 1M plate AMD's fill passes and AMD
+    // is kept (16.5M, 3.7 GFlop, 0.3 s). AMD's fill depends on the starting numbering (the same
+    // disk graph: 25.8M in the OBJ's ring order, 36.5M shuffled, 38.4M in Morton order), so no
+    // cheap renumbering reaches METIS's fill; nor does METIS on a graph coarsened by matching
+    // (1 level: 31.6M, 2 levels: 42.7M), and METIS's own options save at most 13% of its time
+    // (niter 1). Measured on 2 Dec 2026 (docs/PERFORMANCE.md, "Measured and not kept").
 #endif
   }
 };
