@@ -25,7 +25,9 @@ std::vector<double> weights(const Topology& tp, const Coefficients& c, double k,
       scale[static_cast<size_t>(u)] = std::pow(inv_sum, -k);
     }
   });
-  std::vector<double> w(static_cast<size_t>(nh));
+  std::vector<double> w;
+  reserve_huge(w, static_cast<size_t>(nh));
+  w.resize(static_cast<size_t>(nh));
   parallel_for(threads, nh, [&](Index h0, Index h1) {
     for (Index h = h0; h < h1; ++h)
       w[static_cast<size_t>(h)] = (1.0 / c.beta[static_cast<size_t>(h)]) *
