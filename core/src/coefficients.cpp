@@ -22,15 +22,13 @@ Coefficients compute_coefficients(const TriMesh& m, const Topology& tp, bool cur
   c.length_scale = total > 0 ? total / static_cast<double>(nh) : 1.0;
   const double inv = 1.0 / c.length_scale;
   for (std::vector<double>* v : {&c.alpha, &c.beta, &c.length, &c.corner_angle}) {
-    reserve_huge(*v, nh);
-    v->resize(nh);
+    assign_huge(*v, nh);
   }
   c.tri_area.resize(nt);
   c.use_angle.assign(static_cast<size_t>(tp.use_count), 0.0);
   c.use_area.assign(static_cast<size_t>(tp.use_count), 0.0);
   std::vector<double> raw_beta;
-  reserve_huge(raw_beta, nh);
-  raw_beta.resize(nh);
+  assign_huge(raw_beta, nh);
   std::atomic<Index> degenerate{0};
   parallel_for(threads, static_cast<Index>(nt), [&](Index t0, Index t1) {
     Index zero_area = 0;

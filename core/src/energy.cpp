@@ -26,8 +26,7 @@ std::vector<double> weights(const Topology& tp, const Coefficients& c, double k,
     }
   });
   std::vector<double> w;
-  reserve_huge(w, static_cast<size_t>(nh));
-  w.resize(static_cast<size_t>(nh));
+  assign_huge(w, static_cast<size_t>(nh));
   parallel_for(threads, nh, [&](Index h0, Index h1) {
     for (Index h = h0; h < h1; ++h)
       w[static_cast<size_t>(h)] = (1.0 / c.beta[static_cast<size_t>(h)]) *
@@ -73,8 +72,7 @@ constexpr Index kColumnBlock = 8192;
 
 std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s, int threads) {
   std::vector<Complex> sigma;
-  reserve_huge(sigma, c.alpha.size());
-  sigma.resize(c.alpha.size());
+  assign_huge(sigma, c.alpha.size());
   const bool use_rho = s != 0.0 && !rho.empty();
   parallel_for(threads, static_cast<Index>(sigma.size()), [&](Index h0, Index h1) {
     for (size_t h = static_cast<size_t>(h0); h < static_cast<size_t>(h1); ++h)

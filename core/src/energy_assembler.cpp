@@ -60,10 +60,8 @@ EnergyAssembler::EnergyAssembler(const Topology& tp, const SpMatC* B, int thread
       1);
   outer_.assign(static_cast<size_t>(n) + 1, 0);
   for (Index u = 0; u < n; ++u) outer_[static_cast<size_t>(u) + 1] = outer_[static_cast<size_t>(u)] + count[static_cast<size_t>(u)];
-  reserve_huge(row_, static_cast<size_t>(outer_.back()));
-  row_.resize(static_cast<size_t>(outer_.back()));
-  reserve_huge(slot_, 3 * tp.corner_use.size());
-  slot_.resize(3 * tp.corner_use.size());
+  assign_huge(row_, static_cast<size_t>(outer_.back()));
+  assign_huge(slot_, 3 * tp.corner_use.size());
   btb_slot_.resize(static_cast<size_t>(btb_.nonZeros()));
   // Lay the blocks out and find every contribution's slot by a search in its (short) column.
   parallel_for(

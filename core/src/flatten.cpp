@@ -180,17 +180,14 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     // Fixing one short facet edge lets its local error tilt the whole layout; fix the vector
     // between two far-apart boundary uses instead. Same factorisation.
     const auto fp = far_pair(tp, z, tp.outer_loop);
-    if (fp.first == fp.second) {
-      z = kkt.solve(rows_with(mode, rotation, &vec), eta_ptr);
-      recentre(z);
-    } else {
+    if (fp.first != fp.second) {
       vec.terms = {{fp.second, 1.0}, {fp.first, -1.0}};
       vec.rhs = z[fp.second] - z[fp.first];
       pin.terms = {{fp.first, 1.0}};
       pin.rhs = z[fp.first];
-      z = kkt.solve(rows_with(mode, rotation, &vec), eta_ptr);
-      recentre(z);
     }
+    z = kkt.solve(rows_with(mode, rotation, &vec), eta_ptr);  // refined (without a far pair: the first gauge again)
+    recentre(z);
   }
   // Scales about the gauge centre so the total UV area equals the 3D area (size-free layouts).
   auto scale_to_3d_area = [&](VectorXc& zz) {

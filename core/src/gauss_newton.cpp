@@ -116,22 +116,19 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
   const Index n = tp.use_count;
   K.makeCompressed();
   Kc_.swap(K);
-  reserve_huge(S_, static_cast<size_t>(Kc_.nonZeros()));
-  S_.assign(static_cast<size_t>(Kc_.nonZeros()), Complex(0, 0));
+  assign_huge(S_, static_cast<size_t>(Kc_.nonZeros()), Complex(0, 0));
   if (form == Residual::PerHalfEdge) {
     // Each row is weighted by sqrt(w) (per use, by w): keep only the one the form needs.
     for (double& w : w_) w = std::sqrt(w);
     sw_ = std::move(w_);
     w_ = {};
   }
-  reserve_huge(len_, c.alpha.size());
-  len_.assign(c.alpha.size(), 0.0);
+  assign_huge(len_, c.alpha.size(), 0.0);
   if (form == Residual::PerHalfEdge) {
     // Where each triangle's 3x3 block lands, as offsets in its columns (a byte each: 9 MB at 1M
     // triangles; the binary searches took 15% of the linearisation at 1M triangles).
     const size_t nt = tp.corner_use.size() / 3;
-    reserve_huge(block_offset_, 9 * nt);
-    block_offset_.resize(9 * nt);
+    assign_huge(block_offset_, 9 * nt);
     for (size_t t = 0; t < nt; ++t)
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {

@@ -12,8 +12,7 @@ HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count)
   const Index nh = static_cast<Index>(triangles.size() * 3);
   HalfEdges he;
   he.vertex_count = vertex_count;
-  reserve_huge(he.twin, static_cast<size_t>(nh));
-  he.twin.assign(static_cast<size_t>(nh), -1);
+  assign_huge(he.twin, static_cast<size_t>(nh), -1);
   // Half-edges grouped by undirected edge (counting sort on the smaller vertex): partners adjacent,
   // edges in (lo, hi) order, so the first offending edge is the one a full sort would find.
   const EdgeBuckets eb = half_edges_by_edge(triangles, vertex_count);
@@ -48,8 +47,7 @@ HalfEdgeLookup::HalfEdgeLookup(const std::vector<Tri>& triangles, Index vertex_c
   for (const Tri& t : triangles)
     for (Index v : t) ++start_[static_cast<size_t>(v) + 1];
   for (size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
-  reserve_huge(outgoing_, triangles.size() * 3);
-  outgoing_.resize(triangles.size() * 3);
+  assign_huge(outgoing_, triangles.size() * 3);
   std::vector<Index> fill(start_.begin(), start_.end() - 1);
   for (Index h = 0; h < static_cast<Index>(triangles.size() * 3); ++h)
     outgoing_[static_cast<size_t>(fill[static_cast<size_t>(triangles[static_cast<size_t>(h / 3)][h % 3])]++)] = h;

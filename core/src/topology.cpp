@@ -106,11 +106,9 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
     uf.unite(h, HalfEdges::next(g));
     uf.unite(HalfEdges::next(h), g);
   }
-  reserve_huge(tp.corner_use, static_cast<size_t>(nh));
-  tp.corner_use.assign(static_cast<size_t>(nh), -1);
+  assign_huge(tp.corner_use, static_cast<size_t>(nh), -1);
   std::vector<Index> root_use;
-  reserve_huge(root_use, static_cast<size_t>(nh));
-  root_use.assign(static_cast<size_t>(nh), -1);
+  assign_huge(root_use, static_cast<size_t>(nh), -1);
   for (Index c = 0; c < nh; ++c) {
     const Index r = uf.find(c);
     if (root_use[static_cast<size_t>(r)] < 0) {

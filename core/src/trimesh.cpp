@@ -99,8 +99,7 @@ MeshStats compute_stats(const TriMesh& m) {
   const EdgeBuckets eb = half_edges_by_edge(good, static_cast<Index>(nv));
   HalfEdges he;
   he.vertex_count = static_cast<Index>(nv);
-  reserve_huge(he.twin, eb.entries.size());
-  he.twin.assign(eb.entries.size(), -1);
+  assign_huge(he.twin, eb.entries.size(), -1);
   UnionFind comp(static_cast<Index>(good.size()));
   std::int64_t edges = 0, boundary_edges = 0;
   auto from = [&](Index h) { return good[static_cast<size_t>(h / 3)][h % 3]; };

@@ -16,8 +16,7 @@ void bucket_sort(size_t n, Index buckets, Item item, Key key, Less less, std::ve
   start.assign(static_cast<size_t>(buckets) + 1, 0);
   for (size_t i = 0; i < n; ++i) ++start[static_cast<size_t>(key(i)) + 1];
   for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  reserve_huge(out, n);
-  out.resize(n);
+  assign_huge(out, n);
   std::vector<Index> fill(start.begin(), start.end() - 1);
   for (size_t i = 0; i < n; ++i) out[static_cast<size_t>(fill[static_cast<size_t>(key(i))]++)] = item(i);
   for (size_t b = 0; b + 1 < start.size(); ++b) {

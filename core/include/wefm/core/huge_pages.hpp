@@ -26,6 +26,13 @@ void reserve_huge(std::vector<T, A>& v, std::size_t n) {
   advise_huge_pages(v.data(), n * sizeof(T));
 }
 
+// v.assign(n, value) with the room reserved and advised first (v is normally empty).
+template <class T, class A>
+void assign_huge(std::vector<T, A>& v, std::size_t n, const typename std::vector<T, A>::value_type& value = T()) {
+  reserve_huge(v, n);
+  v.assign(n, value);
+}
+
 // Advises a compressed Eigen sparse matrix's index and value arrays, between resizeNonZeros and
 // the first write.
 template <class Sparse>
