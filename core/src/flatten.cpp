@@ -11,6 +11,7 @@
 #include <string>
 #include <tuple>
 
+#include "wefm/core/caller_rows.hpp"
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
 #include "wefm/core/gauge.hpp"
@@ -50,6 +51,12 @@ double peak_memory_mb() {
 
 namespace {
 
+// The caller's rows are bounded (caller_rows.hpp) and the mesh's size is checked, so a non-finite
+// layout is a bug: reported as one, never returned as a result.
+void require_finite(const VectorXc& uv) {
+  if (!uv.allFinite()) fail(Errc::internal, "the solve produced a layout with non-finite coordinates");
+}
+
 FlattenResult flatten_attempt(const FlattenInput& in) {
   const double t_start = now();
   const TriMesh& mesh = *in.mesh;
@@ -73,9 +80,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   const double ls = coef.length_scale;
   const Eigen::VectorXd eta = Eigen::Map<const Eigen::VectorXd>(coef.use_area.data(), static_cast<Index>(coef.use_area.size()));
 
-  // Caller rows in normalised units.
-  std::vector<LinearRow> caller = in.constraints;
-  for (auto& r : caller) r.rhs /= ls;
+  const std::vector<LinearRow> caller = normalised_caller_rows(in.constraints, ls);
   const VectorXc z_ref = planar_projection(mesh, tp, ls);
   GaugeChoice gauge = choose_gauges(caller, z_ref);
   // Translation is fixed by pinning one gauge use and shifting afterwards (see PartitionedKKT::solve).
@@ -118,6 +123,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
           fail(Errc::unsupported, "the roll-out method supports only free repeated edges (edge " + std::to_string(r.edge) + " is not free); use the global method");
     RolloutResult rr = rollout(mesh, tp, coef, caller, opt, [&](double f) { stage.check(f, "rollout"); });
     res.uv = rr.z * ls;
+    require_finite(res.uv);
     rep.iterative_iterations = rr.sweeps;
     rep.converged = rr.converged;
     rep.s = 1.0;
@@ -380,6 +386,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   stage.check(0.95, "quality");
   glue_scars(tp, mode, z);
   res.uv = z * ls;
+  require_finite(res.uv);
   t0 = now();
   rep.quality = evaluate_quality(mesh, tp, res.uv);
   rep.time.quality += now() - t0;

@@ -356,6 +356,55 @@ TEST_CASE("constraints: contradictory pins make the KKT system singular; the fac
   CHECK(get_uv(fx.face) == before);
 }
 
+TEST_CASE("constraints: values beyond what double can place are INVALID_CONSTRAINT at solve; tiny coefficients are fine") {
+  // Found by the C API fuzzer: a pin at 1.7e308 came back as WEFM_OK with infinite UVs, and one at
+  // 1e300 as a layout whose vertices all rounded to the pin.
+  Fixture fx;
+  REQUIRE(wefm_face_solve(fx.face) == WEFM_OK);
+  const std::vector<double> before = get_uv(fx.face);
+  int32_t id = -1;
+  for (double far : {1.7e308, 1e300, 1e20}) {
+    REQUIRE(wefm_face_clear_constraints(fx.face) == WEFM_OK);
+    REQUIRE(wefm_face_add_pin(fx.face, 0, far, 0, &id) == WEFM_OK);
+    CHECK(wefm_face_solve(fx.face) == WEFM_ERROR_INVALID_CONSTRAINT);
+    CHECK(contains(fx.face.error(), "constraint 0"));
+    CHECK(contains(fx.face.error(), "edge lengths"));
+  }
+  // A row whose largest coefficient is tiny reaches as far as its quotient: 1 / 5e-324 overflows.
+  const int32_t uses[] = {0, 5};
+  const double tiny[] = {5e-324, 0, 0, 0}, one[] = {1, 0};
+  REQUIRE(wefm_face_clear_constraints(fx.face) == WEFM_OK);
+  REQUIRE(wefm_face_add_constraint(fx.face, 2, uses, tiny, one, &id) == WEFM_OK);
+  CHECK(wefm_face_solve(fx.face) == WEFM_ERROR_INVALID_CONSTRAINT);
+  // Zero coefficients with a non-zero right-hand side can never hold.
+  const double zero[] = {0, 0, 0, 0};
+  REQUIRE(wefm_face_clear_constraints(fx.face) == WEFM_OK);
+  REQUIRE(wefm_face_add_constraint(fx.face, 2, uses, zero, one, &id) == WEFM_OK);
+  CHECK(wefm_face_solve(fx.face) == WEFM_ERROR_INVALID_CONSTRAINT);
+  CHECK(contains(fx.face.error(), "zero coefficients"));
+  // The same pin written with coefficients of 1e-300 is the same constraint: z0 = (1, 2).
+  const double small[] = {1e-300, 0, 0, 0}, small_rhs[] = {1e-300, 2e-300};
+  REQUIRE(wefm_face_clear_constraints(fx.face) == WEFM_OK);
+  REQUIRE(wefm_face_add_constraint(fx.face, 2, uses, small, small_rhs, &id) == WEFM_OK);
+  REQUIRE(wefm_face_solve(fx.face) == WEFM_OK);
+  const std::vector<double> uv = get_uv(fx.face);
+  CHECK(uv[0] == doctest::Approx(1.0));
+  CHECK(uv[1] == doctest::Approx(2.0));
+  // A far pin within range keeps its triangles apart: the layout is the pinned one, shifted.
+  REQUIRE(wefm_face_clear_constraints(fx.face) == WEFM_OK);
+  REQUIRE(wefm_face_add_pin(fx.face, 0, 1e6, 0, &id) == WEFM_OK);
+  REQUIRE(wefm_face_solve(fx.face) == WEFM_OK);
+  wefm_report r;
+  wefm_report_init(&r);
+  REQUIRE(wefm_face_get_report(fx.face, &r) == WEFM_OK);
+  CHECK(r.flipped_triangles == 0);
+  CHECK(r.score > 0.9);
+  CHECK(get_uv(fx.face)[0] == doctest::Approx(1e6));
+  REQUIRE(wefm_face_clear_constraints(fx.face) == WEFM_OK);
+  CHECK(wefm_face_solve(fx.face) == WEFM_OK);
+  CHECK(get_uv(fx.face) == before);
+}
+
 TEST_CASE("options: every out-of-range value is INVALID_ARGUMENT naming the option; old options kept") {
   Fixture fx;
   wefm_options keep = options();

@@ -483,6 +483,13 @@ WEFM_API wefm_status wefm_face_get_vertex_uses(wefm_face* face, int32_t vertex, 
  * Caller constraints replace the automatic gauges they make redundant: a constraint whose
  * coefficients do not sum to zero fixes translation; constraints fixing the vector between uses fix
  * rotation and scale. Pins are constraints with one term.
+ *
+ * Range: a constraint's |c| over its largest |g_j| (per real and imaginary part) may be at most
+ * 1e10 mean facet-edge lengths of the mesh. Farther out, double rounding of a position exceeds 1e-6
+ * of an edge (and near DBL_MAX the layout overflows): the solve returns
+ * WEFM_ERROR_INVALID_CONSTRAINT naming the constraint. Rows are scaled by their largest coefficient
+ * before the solve, so coefficients as small as 1e-300 are fine. All-zero coefficients with c != 0
+ * are WEFM_ERROR_INVALID_CONSTRAINT at the solve too.
  */
 
 /**
@@ -492,7 +499,8 @@ WEFM_API wefm_status wefm_face_get_vertex_uses(wefm_face* face, int32_t vertex, 
  * @param u                   target u.
  * @param v                   target v.
  * @param[out] constraint_id  the constraint's id; may be NULL.
- * @return WEFM_ERROR_INVALID_CONSTRAINT for an unknown use (here or at the solve).
+ * @return WEFM_ERROR_INVALID_CONSTRAINT for an unknown use or a non-finite u or v (here or at the
+ *         solve), and at the solve for a pin out of range (see "Range" above).
  */
 WEFM_API wefm_status wefm_face_add_pin(wefm_face* face, int32_t use, double u, double v, int32_t* constraint_id);
 /**
@@ -503,7 +511,8 @@ WEFM_API wefm_status wefm_face_add_pin(wefm_face* face, int32_t use, double u, d
  * @param coefficients        2n doubles: g_j as (re, im).
  * @param rhs                 2 doubles: c as (re, im).
  * @param[out] constraint_id  the constraint's id; may be NULL.
- * @return WEFM_ERROR_INVALID_CONSTRAINT (n < 1, an unknown use); WEFM_ERROR_SINGULAR at the solve for
+ * @return WEFM_ERROR_INVALID_CONSTRAINT (n < 1, an unknown use, a non-finite value; at the solve, a
+ *         constraint out of range, see "Range" above); WEFM_ERROR_SINGULAR at the solve for
  *         contradictory constraints.
  */
 WEFM_API wefm_status wefm_face_add_constraint(wefm_face* face, int64_t n, const int32_t* uses,
