@@ -6,6 +6,7 @@
 
 #include "command.hpp"
 #include "exit_codes.hpp"
+#include "huge_page_malloc.hpp"
 #include "wefm/wefm.h"
 
 namespace {
@@ -52,6 +53,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  wefm_cli::reexec_with_huge_page_malloc(argc, argv);
   // No exception may escape: an unexpected one (std::bad_alloc while writing outputs) becomes a
   // message and the solver-failure code rather than std::terminate.
   try {

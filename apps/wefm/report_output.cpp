@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "exit_codes.hpp"
+#include "huge_page_malloc.hpp"
 #include "names.hpp"
 
 namespace wefm_cli {
@@ -112,6 +113,7 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
                   {"wall_solve", number(ctx.timings.solve)},
                   {"wall_before_report", number(ctx.timings.total)}};
   j["peak_memory_mb"] = number(r.peak_memory_mb);
+  j["huge_page_malloc"] = huge_page_malloc_active();
   Json outputs = Json::object();
   for (const auto& [what, p] : ctx.outputs) outputs[key_of(what)] = p;
   j["outputs"] = outputs;

@@ -30,8 +30,9 @@ def check(cond, what):
         raise Failure(what)
 
 
-def run(*args, expect=None):
-    p = subprocess.run([WEFM, *map(str, args)], capture_output=True, text=True, timeout=120)
+def run(*args, expect=None, env=None):
+    p = subprocess.run([WEFM, *map(str, args)], capture_output=True, text=True, timeout=120,
+                       env=None if env is None else {**os.environ, **env})
     if expect is not None and p.returncode != expect:
         raise Failure(f"wefm {' '.join(map(str, args))}: exit {p.returncode}, expected {expect}\n"
                       f"stdout:\n{p.stdout}\nstderr:\n{p.stderr}")
@@ -420,6 +421,52 @@ def case_progress_quiet(tmp):
     check(q.stdout == "" and q.stderr == "", f"--quiet printed:\n{q.stdout}{q.stderr}")
 
 
+def huge_page_malloc_expected(env):
+    """True or False where the tool's start-up conditions decide clearly; None where free memory
+    is too close to its 2 GB threshold to tell from here (it moves between the two checks)."""
+    env = {**os.environ, **env}
+    if env.get("WEFM_HUGE_PAGES") == "0" or env.get("LD_PRELOAD"):
+        return False
+    tunables = env.get("GLIBC_TUNABLES", "")
+    if "glibc.malloc.hugetlb" in tunables:
+        return "glibc.malloc.hugetlb=1" in tunables
+    libc = (os.confstr("CS_GNU_LIBC_VERSION") or "").split()
+    if len(libc) != 2 or libc[0] != "glibc" or tuple(int(x) for x in libc[1].split(".")[:2]) < (2, 35):
+        return False
+    try:
+        with open("/sys/kernel/mm/transparent_hugepage/enabled") as f:
+            if "[madvise]" not in f.read():
+                return False
+        with open("/proc/meminfo") as f:
+            free_kb = next(int(line.split()[1]) for line in f if line.startswith("MemFree:"))
+    except (OSError, StopIteration):
+        return False
+    gb = 1024 * 1024
+    return False if free_kb < 1.5 * gb else None if free_kb < 2.5 * gb else True
+
+
+def case_huge_page_malloc(tmp):
+    # Starting again with huge-page malloc changes where memory comes from, never the result: the
+    # UV OBJ is byte-identical with and without it, and the report says which way each run went.
+    V, T = meshes.patch()
+    src = os.path.join(tmp, "p.obj")
+    meshes.write_obj(src, V, T)
+    outs = {}
+    for name, env in [("default", {}), ("off", {"WEFM_HUGE_PAGES": "0"}),
+                      ("glibc_off", {"GLIBC_TUNABLES": "glibc.malloc.hugetlb=0"}),
+                      ("other_tunable", {"GLIBC_TUNABLES": "glibc.malloc.check=0"})]:
+        out, rep = os.path.join(tmp, f"{name}.obj"), os.path.join(tmp, f"{name}.json")
+        run("flatten", src, "-o", out, "--report", rep, "-q", expect=0, env=env)
+        with open(out, "rb") as f:
+            outs[name] = f.read()
+        with open(rep) as f:
+            active = json.load(f)["huge_page_malloc"]
+        expected = huge_page_malloc_expected(env)
+        check(active is expected or expected is None and isinstance(active, bool),
+              f"{name}: huge_page_malloc {active}, expected {expected}")
+    check(len(set(outs.values())) == 1, "the UV OBJ depends on huge-page malloc")
+
+
 def case_png(tmp):
     V, T = meshes.patch()
     src = os.path.join(tmp, "p.obj")
@@ -500,7 +547,8 @@ def case_mesh(tmp):
 CASES = {f"format_{fmt}": (lambda tmp, fmt=fmt: case_format(fmt, tmp)) for fmt in meshes.WRITERS}
 CASES.update(info=case_info, batch=case_batch, usage=case_usage, unreadable=case_unreadable, topology=case_topology,
              topology_bad=case_topology_bad, write_topology=case_write_topology, progress_quiet=case_progress_quiet,
-             png=case_png, not_converged=case_not_converged, mesh=case_mesh, auto_cut=case_auto_cut)
+             png=case_png, not_converged=case_not_converged, mesh=case_mesh, auto_cut=case_auto_cut,
+             huge_page_malloc=case_huge_page_malloc)
 
 
 def main():

@@ -56,7 +56,10 @@
  *              (SuiteSparse_config) at wrappers that add that advice, process-wide, once, and only
  *              if the host program has not installed its own allocator there; the blocks stay
  *              ordinary malloc blocks, freed by free(). WEFM_HUGE_PAGES=0 in the environment (read
- *              once) turns both off.
+ *              once) turns both off. What the library cannot advise (smaller blocks, Eigen's
+ *              arrays) a host on glibc >= 2.35 reaches by starting with
+ *              GLIBC_TUNABLES=glibc.malloc.hugetlb=1 in its environment, as the wefm tool does
+ *              (a 1M-triangle solve: about 100k faults -> 11k; apps/README.md, "Environment").
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or

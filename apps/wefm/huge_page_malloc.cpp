@@ -1,0 +1,95 @@
+#include "huge_page_malloc.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#if defined(__linux__) && defined(__GLIBC__)
+#include <gnu/libc-version.h>
+#include <unistd.h>
+#endif
+
+// Why: on a virtual machine every first touch of a 4 KB page is a fault of about 11 us, and a
+// 1M-triangle solve touches about 1.2 GB. The library advises its own large arrays (wefm.h,
+// "Memory"), but what it cannot reach (Eigen's sparse value arrays, which their constructors touch
+// before any advice, and the many blocks under 4 MB) still took 100k faults on the 1M plate at
+// s = 0; with glibc's tunable 11k, and the whole run 4.6 -> 3.7 s (wefm-bench and docs/PERFORMANCE.md).
+// The tunable is read once at start-up, so it can only be set by starting again. A host program
+// embedding the library can set it in its own environment the same way.
+//
+// When not: WEFM_HUGE_PAGES=0; GLIBC_TUNABLES already names glibc.malloc.hugetlb (also the mark of
+// the started-again process); LD_PRELOAD set (valgrind, sanitizers and profilers preload, and
+// must keep the process they watch); transparent huge pages not in `madvise` mode (`always` needs
+// no advice, `never` ignores it); glibc older than 2.35 (no such tunable); less than 2 GB of free
+// memory (a machine whose memory is full of page cache can stall in compaction to find huge pages).
+
+namespace wefm_cli {
+
+namespace {
+
+#if defined(__linux__) && defined(__GLIBC__)
+bool solving_command(const char* c) {
+  for (const char* s : {"flatten", "mesh", "model", "mesh-model", "batch"})
+    if (std::strcmp(c, s) == 0) return true;
+  return false;
+}
+
+bool glibc_has_tunable() {
+  int major = 0, minor = 0;
+  std::istringstream in(gnu_get_libc_version());
+  char dot = 0;
+  in >> major >> dot >> minor;
+  return major > 2 || (major == 2 && minor >= 35);
+}
+
+bool thp_in_madvise_mode() {
+  std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string line;
+  return std::getline(f, line) && line.find("[madvise]") != std::string::npos;
+}
+
+long long mem_free_kb() {
+  std::ifstream f("/proc/meminfo");
+  std::string key;
+  long long kb = 0;
+  while (f >> key >> kb) {
+    if (key == "MemFree:") return kb;
+    f.ignore(256, '\n');
+  }
+  return 0;
+}
+#endif
+
+}  // namespace
+
+void reexec_with_huge_page_malloc(int argc, char** argv) {
+#if defined(__linux__) && defined(__GLIBC__)
+  if (argc < 2 || !solving_command(argv[1])) return;
+  const char* off = std::getenv("WEFM_HUGE_PAGES");
+  if (off && std::strcmp(off, "0") == 0) return;
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;
+  const char* preload = std::getenv("LD_PRELOAD");
+  if (preload && *preload) return;
+  if (!glibc_has_tunable() || !thp_in_madvise_mode() || mem_free_kb() < 2LL * 1024 * 1024) return;
+  std::string value = tunables && *tunables ? std::string(tunables) + ":" : std::string();
+  value += "glibc.malloc.hugetlb=1";
+  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  // exec failed (no /proc, say): go on in this process, without the tunable.
+  if (tunables) setenv("GLIBC_TUNABLES", tunables, 1);
+  else unsetenv("GLIBC_TUNABLES");
+#else
+  (void)argc;
+  (void)argv;
+#endif
+}
+
+bool huge_page_malloc_active() {
+  const char* t = std::getenv("GLIBC_TUNABLES");
+  return t && std::strstr(t, "glibc.malloc.hugetlb=1") != nullptr;
+}
+
+}  // namespace wefm_cli
