@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -175,6 +176,16 @@ int run_benchmark(const Settings& st, const std::string& command) {
   results["wefm_version"] = wefm_version();
   results["suitesparse"] = wefm_has_suitesparse() != 0;
   results["machine"] = machine_description();
+  // Every case (wefm in-process, the floor, the CGAL peer, the whole-process wefm) runs with
+  // glibc's huge-page malloc, as the wefm tool runs itself (apps/README.md, "Environment"): the
+  // same allocator for all, and the library measured as the tool and a tuned host run it. A
+  // caller's own setting of the tunable is kept (glibc.malloc.hugetlb=0 measures without).
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (!tunables || !std::strstr(tunables, "glibc.malloc.hugetlb")) {
+    const std::string v = (tunables && *tunables ? std::string(tunables) + ":" : std::string()) + "glibc.malloc.hugetlb=1";
+    setenv("GLIBC_TUNABLES", v.c_str(), 1);
+  }
+  results["glibc_tunables"] = std::getenv("GLIBC_TUNABLES");
   results["load_start"] = load_average();
   results["timeout"] = st.timeout;
   results["cases"] = Json::array();

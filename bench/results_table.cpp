@@ -127,6 +127,7 @@ std::string markdown_tables(const Json& results) {
   const Json& cases = results["cases"];
   std::string md;
   md += "Machine: " + results.value("machine", "?") + "  \n";
+  if (results.contains("glibc_tunables")) md += "Every case ran with `GLIBC_TUNABLES=" + results.value("glibc_tunables", "") + "`  \n";
   md += "Date: " + results.value("date", "?") + "; wefm " + results.value("wefm_version", "?") + "; load average " +
         fmt(get(results, "load_start"), "%.2f") + " at start, " + fmt(get(results, "load_end"), "%.2f") + " at end  \n";
   md += "Command: `" + results.value("command", "?") + "`\n\n";

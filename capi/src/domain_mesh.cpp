@@ -84,10 +84,11 @@ WEFM_API wefm_status wefm_domain_mesh_get_uv(const wefm_domain_mesh* mesh, doubl
   WEFM_REQUIRE(mesh, "wefm_domain_mesh_get_uv");
   WEFM_REQUIRE(count, "wefm_domain_mesh_get_uv");
   return guarded(nullptr, [&] {
-    std::vector<double> v;
-    v.reserve(2 * mesh->mesh.uv.size());
-    for (const auto& p : mesh->mesh.uv) v.insert(v.end(), {p.x(), p.y()});
-    wefm::capi::copy_out(v, uv, capacity, count);
+    const auto& ps = mesh->mesh.uv;
+    wefm::capi::copy_out_records(ps.size(), 2, uv, capacity, count, [&](std::size_t i, double* out) {
+      out[0] = ps[i].x();
+      out[1] = ps[i].y();
+    });
   });
 }
 
@@ -95,10 +96,12 @@ WEFM_API wefm_status wefm_domain_mesh_get_xyz(const wefm_domain_mesh* mesh, doub
   WEFM_REQUIRE(mesh, "wefm_domain_mesh_get_xyz");
   WEFM_REQUIRE(count, "wefm_domain_mesh_get_xyz");
   return guarded(nullptr, [&] {
-    std::vector<double> v;
-    v.reserve(3 * mesh->mesh.xyz.size());
-    for (const auto& p : mesh->mesh.xyz) v.insert(v.end(), {p.x(), p.y(), p.z()});
-    wefm::capi::copy_out(v, xyz, capacity, count);
+    const auto& ps = mesh->mesh.xyz;
+    wefm::capi::copy_out_records(ps.size(), 3, xyz, capacity, count, [&](std::size_t i, double* out) {
+      out[0] = ps[i].x();
+      out[1] = ps[i].y();
+      out[2] = ps[i].z();
+    });
   });
 }
 

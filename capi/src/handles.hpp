@@ -61,15 +61,22 @@ wefm_status guarded(std::string* err, F&& body) noexcept {
 // NULL handle: thread-local message, WEFM_ERROR_NULL_ARGUMENT.
 wefm_status null_argument(const char* function, const char* argument);
 
-// Size-query output (wefm.h "Buffers"). Throws via the guard when the caller's buffer is short.
-template <class T, class S>
-void copy_out(const std::vector<S>& values, T* buffer, std::int64_t capacity, std::int64_t* count) {
+// Size-query output (wefm.h "Buffers") of `items` records of `width` values, written straight into
+// the caller's buffer by get(i, out) (a size query builds nothing; a 1M-triangle mesh's arrays were
+// built twice in temporaries, once per call). Throws via the guard when the buffer is short.
+template <class T, class Get>
+void copy_out_records(std::size_t items, std::size_t width, T* buffer, std::int64_t capacity, std::int64_t* count, Get get) {
   if (!count) throw wefm::Error(wefm::Errc::invalid_argument, "count pointer is NULL");
-  *count = static_cast<std::int64_t>(values.size());
+  *count = static_cast<std::int64_t>(items * width);
   if (!buffer) return;
   if (capacity < *count)
     throw wefm::Error(static_cast<wefm::Errc>(WEFM_ERROR_BUFFER_TOO_SMALL), "buffer too small: capacity " + std::to_string(capacity) + " < " + std::to_string(*count) + " elements needed");
-  for (size_t i = 0; i < values.size(); ++i) buffer[i] = static_cast<T>(values[i]);
+  for (std::size_t i = 0; i < items; ++i) get(i, buffer + i * width);
+}
+
+template <class T, class S>
+void copy_out(const std::vector<S>& values, T* buffer, std::int64_t capacity, std::int64_t* count) {
+  copy_out_records(values.size(), 1, buffer, capacity, count, [&](std::size_t i, T* out) { *out = static_cast<T>(values[i]); });
 }
 
 // Copy a versioned struct in or out: only the first struct_size bytes the caller knows about.

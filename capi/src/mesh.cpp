@@ -58,10 +58,10 @@ WEFM_API wefm_status wefm_mesh_get_vertices(const wefm_mesh* mesh, double* xyz, 
   WEFM_REQUIRE(mesh, "wefm_mesh_get_vertices");
   WEFM_REQUIRE(count, "wefm_mesh_get_vertices");
   return guarded(nullptr, [&] {
-    std::vector<double> v;
-    v.reserve(mesh->mesh.vertices.size() * 3);
-    for (const auto& p : mesh->mesh.vertices) v.insert(v.end(), {p[0], p[1], p[2]});
-    wefm::capi::copy_out(v, xyz, capacity, count);
+    const auto& vs = mesh->mesh.vertices;
+    wefm::capi::copy_out_records(vs.size(), 3, xyz, capacity, count, [&](std::size_t i, double* out) {
+      for (int k = 0; k < 3; ++k) out[k] = vs[i][k];
+    });
   });
 }
 
@@ -69,10 +69,10 @@ WEFM_API wefm_status wefm_mesh_get_triangles(const wefm_mesh* mesh, int32_t* tri
   WEFM_REQUIRE(mesh, "wefm_mesh_get_triangles");
   WEFM_REQUIRE(count, "wefm_mesh_get_triangles");
   return guarded(nullptr, [&] {
-    std::vector<int32_t> v;
-    v.reserve(mesh->mesh.triangles.size() * 3);
-    for (const auto& t : mesh->mesh.triangles) v.insert(v.end(), {t[0], t[1], t[2]});
-    wefm::capi::copy_out(v, tri, capacity, count);
+    const auto& ts = mesh->mesh.triangles;
+    wefm::capi::copy_out_records(ts.size(), 3, tri, capacity, count, [&](std::size_t i, int32_t* out) {
+      for (int k = 0; k < 3; ++k) out[k] = static_cast<int32_t>(ts[i][k]);
+    });
   });
 }
 

@@ -84,12 +84,10 @@ WEFM_API wefm_status wefm_face_get_uv(wefm_face* face, double* uv, int64_t capac
   WEFM_REQUIRE(count, "wefm_face_get_uv");
   return guarded(&face->last_error, [&] {
     const wefm::VectorXc& z = face->face.result().uv;
-    std::vector<double> v(static_cast<size_t>(z.size()) * 2);
-    for (wefm::Index u = 0; u < z.size(); ++u) {
-      v[2 * static_cast<size_t>(u)] = z[u].real();
-      v[2 * static_cast<size_t>(u) + 1] = z[u].imag();
-    }
-    wefm::capi::copy_out(v, uv, capacity, count);
+    wefm::capi::copy_out_records(static_cast<std::size_t>(z.size()), 2, uv, capacity, count, [&](std::size_t u, double* out) {
+      out[0] = z[static_cast<wefm::Index>(u)].real();
+      out[1] = z[static_cast<wefm::Index>(u)].imag();
+    });
   });
 }
 
