@@ -75,8 +75,24 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta, threads);
   rep.time.coefficients = now() - t0;
   rep.degenerate_triangles = coef.degenerate_triangles;
-  if (coef.degenerate_triangles == static_cast<Index>(mesh.triangles.size()))
+  if (coef.degenerate_triangles == static_cast<Index>(mesh.triangles.size())) {
+    // Edge lengths squared overflow above about 1e154 and underflow below 1e-154: such a mesh
+    // has shape, but not one double precision can measure.
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Tri& f : mesh.triangles)
+      for (Index v : f) {
+        lo = lo.cwiseMin(mesh.vertices[static_cast<size_t>(v)]);
+        hi = hi.cwiseMax(mesh.vertices[static_cast<size_t>(v)]);
+      }
+    const double extent = (hi - lo).maxCoeff();
+    if (extent > 1e150 || (extent > 0 && extent < 1e-150)) {
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.3g", extent);
+      fail(Errc::invalid_mesh, std::string("the mesh's extent, ") + buf +
+                                   ", is outside 1e-150 .. 1e150: its edge lengths squared overflow or underflow double precision; rescale the coordinates");
+    }
     fail(Errc::invalid_mesh, "every triangle of the face has zero area: there is no shape to flatten");
+  }
   const double ls = coef.length_scale;
   const Eigen::VectorXd eta = Eigen::Map<const Eigen::VectorXd>(coef.use_area.data(), static_cast<Index>(coef.use_area.size()));
 
