@@ -15,6 +15,7 @@
 
 #include "case_runner.hpp"
 #include "child_process.hpp"
+#include "huge_page_malloc.hpp"
 #include "process_stats.hpp"
 #include "results_table.hpp"
 #include "wefm/wefm.h"
@@ -180,11 +181,7 @@ int run_benchmark(const Settings& st, const std::string& command) {
   // glibc's huge-page malloc, as the wefm tool runs itself (apps/README.md, "Environment"): the
   // same allocator for all, and the library measured as the tool and a tuned host run it. A
   // caller's own setting of the tunable is kept (glibc.malloc.hugetlb=0 measures without).
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if (!tunables || !std::strstr(tunables, "glibc.malloc.hugetlb")) {
-    const std::string v = (tunables && *tunables ? std::string(tunables) + ":" : std::string()) + "glibc.malloc.hugetlb=1";
-    setenv("GLIBC_TUNABLES", v.c_str(), 1);
-  }
+  wefm_cli::add_huge_page_malloc_tunable();
   results["glibc_tunables"] = std::getenv("GLIBC_TUNABLES");
   results["load_start"] = load_average();
   results["timeout"] = st.timeout;

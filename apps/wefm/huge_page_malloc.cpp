@@ -74,17 +74,23 @@ void reexec_with_huge_page_malloc(int argc, char** argv) {
   const char* preload = std::getenv("LD_PRELOAD");
   if (preload && *preload) return;
   if (!glibc_has_tunable() || !thp_in_madvise_mode() || mem_free_kb() < 2LL * 1024 * 1024) return;
-  std::string value = tunables && *tunables ? std::string(tunables) + ":" : std::string();
-  value += "glibc.malloc.hugetlb=1";
-  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+  const std::string before = tunables ? tunables : "";
+  if (!add_huge_page_malloc_tunable()) return;
   execv("/proc/self/exe", argv);
   // exec failed (no /proc, say): go on in this process, without the tunable.
-  if (tunables) setenv("GLIBC_TUNABLES", tunables, 1);
+  if (tunables) setenv("GLIBC_TUNABLES", before.c_str(), 1);
   else unsetenv("GLIBC_TUNABLES");
 #else
   (void)argc;
   (void)argv;
 #endif
+}
+
+bool add_huge_page_malloc_tunable() {
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return false;
+  const std::string value = (tunables && *tunables ? std::string(tunables) + ":" : std::string()) + "glibc.malloc.hugetlb=1";
+  return setenv("GLIBC_TUNABLES", value.c_str(), 1) == 0;
 }
 
 bool huge_page_malloc_active() {

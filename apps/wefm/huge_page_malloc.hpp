@@ -7,6 +7,10 @@ namespace wefm_cli {
 
 void reexec_with_huge_page_malloc(int argc, char** argv);
 
+// Appends glibc.malloc.hugetlb=1 to this process's GLIBC_TUNABLES (for the programs it starts)
+// unless the variable already names that tunable. Returns whether it changed the variable.
+bool add_huge_page_malloc_tunable();
+
 // Whether this process runs with glibc.malloc.hugetlb=1 (set here or by the caller).
 bool huge_page_malloc_active();
 

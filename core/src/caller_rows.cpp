@@ -2,22 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "wefm/core/error.hpp"
 
 namespace wefm {
-
-namespace {
-
-std::string num(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", x);
-  return buf;
-}
-
-}  // namespace
 
 std::vector<LinearRow> normalised_caller_rows(const std::vector<LinearRow>& rows, double length_scale) {
   std::vector<LinearRow> out = rows;
@@ -35,9 +24,9 @@ std::vector<LinearRow> normalised_caller_rows(const std::vector<LinearRow>& rows
     const double reach = std::max(std::abs(rhs.real()), std::abs(rhs.imag()));
     if (!(reach <= kMaxConstraintReach))
       fail(Errc::invalid_constraint,
-           "constraint " + std::to_string(k) + " places the layout about " + (std::isfinite(reach) ? num(reach) : std::string("infinitely many")) +
-               " mean edge lengths (" + num(length_scale) + " each) from the origin: its right-hand side over its largest coefficient may be at most " +
-               num(kMaxConstraintReach) + " edge lengths, beyond which double precision cannot resolve the face's triangles");
+           "constraint " + std::to_string(k) + " places the layout about " + (std::isfinite(reach) ? message_number(reach) : std::string("infinitely many")) +
+               " mean edge lengths (" + message_number(length_scale) + " each) from the origin: its right-hand side over its largest coefficient may be at most " +
+               message_number(kMaxConstraintReach) + " edge lengths, beyond which double precision cannot resolve the face's triangles");
     for (auto& t : r.terms) t.second /= big;
     r.rhs = rhs;
   }

@@ -85,12 +85,9 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         hi = hi.cwiseMax(mesh.vertices[static_cast<size_t>(v)]);
       }
     const double extent = (hi - lo).maxCoeff();
-    if (extent > 1e150 || (extent > 0 && extent < 1e-150)) {
-      char buf[64];
-      std::snprintf(buf, sizeof buf, "%.3g", extent);
-      fail(Errc::invalid_mesh, std::string("the mesh's extent, ") + buf +
+    if (extent > 1e150 || (extent > 0 && extent < 1e-150))
+      fail(Errc::invalid_mesh, "the mesh's extent, " + message_number(extent) +
                                    ", is outside 1e-150 .. 1e150: its edge lengths squared overflow or underflow double precision; rescale the coordinates");
-    }
     fail(Errc::invalid_mesh, "every triangle of the face has zero area: there is no shape to flatten");
   }
   const double ls = coef.length_scale;

@@ -1,6 +1,7 @@
 #pragma once
 // Errors raised inside the core. The C API turns each into its status code and message; nothing
 // else in the core reports failure, so every failure carries a precise, user-facing message.
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -34,5 +35,12 @@ class Error : public std::runtime_error {
 };
 
 [[noreturn]] inline void fail(Errc code, const std::string& message) { throw Error(code, message); }
+
+// A number for a message, to 3 significant digits (1.7e+308, 0.125).
+inline std::string message_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", x);
+  return buf;
+}
 
 }  // namespace wefm
