@@ -1,4 +1,5 @@
 #include "wefm/core/float_supernodal_solve.hpp"
+#include "wefm/core/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -6,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #ifdef __linux__
 #include <sys/mman.h>
@@ -142,42 +144,56 @@ inline void gather(const float* x, const int* rows, int k1, int nc, int nr, floa
   }
 }
 
-// L y = b, then L^H x = y, in place on x (length n, in the factor's order). The diagonal entry of
-// each column holds 1 / L_jj (see assign). Each supernode's rows are gathered into g (its own
-// columns first, contiguous in x), its columns applied there, and scattered back.
-WEFM_AVX2 void solve_avx2(const SupernodalView& f, const float* values, float* x, float* g) {
-  for (int sn = 0; sn < f.nsuper; ++sn) {
-    const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
-    const int* rows = f.s + f.pi[sn];
-    const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
-    gather(x, rows, k1, nc, nr, g);
-    for (int j = 0; j < nc; ++j) {
-      const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
-      const float yr = g[2 * j] * col[0], yi = g[2 * j + 1] * col[0];
-      g[2 * j] = yr;
-      g[2 * j + 1] = yi;
-      sub_scaled(g + 2 * (j + 1), col + 2, nr - j - 1, yr, yi);
-    }
-    std::memcpy(x + 2 * k1, g, sizeof(float) * 2 * static_cast<size_t>(nc));
-    for (int i = nc; i < nr; ++i) {
-      x[2 * rows[i]] = g[2 * i];
-      x[2 * rows[i] + 1] = g[2 * i + 1];
-    }
+// The forward step of supernode sn (L y = b, in place on x). The diagonal entry of each column
+// holds 1 / L_jj (see assign). The supernode's rows are gathered into g (its own columns first,
+// contiguous in x), its columns applied there, and scattered back. With `owner`, rows owned by
+// another part than `part` (the ancestors above a subtree part) are read from and written to
+// `away` instead of x: two parts that share ancestors then never write the same element.
+WEFM_AVX2 void forward_supernode(const SupernodalView& f, const float* values, int sn, float* x, float* g, const std::uint8_t* owner,
+                                 std::uint8_t part, float* away) {
+  const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
+  const int* rows = f.s + f.pi[sn];
+  const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
+  std::memcpy(g, x + 2 * k1, sizeof(float) * 2 * static_cast<size_t>(nc));
+  for (int i = nc; i < nr; ++i) {
+    const float* src = owner && owner[rows[i]] != part ? away : x;
+    g[2 * i] = src[2 * rows[i]];
+    g[2 * i + 1] = src[2 * rows[i] + 1];
   }
-  for (int sn = f.nsuper - 1; sn >= 0; --sn) {
-    const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
-    const int* rows = f.s + f.pi[sn];
-    const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
-    gather(x, rows, k1, nc, nr, g);
-    for (int j = nc - 1; j >= 0; --j) {
-      const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
-      float re, im;
-      dot_conj(col + 2, g + 2 * (j + 1), nr - j - 1, re, im);
-      g[2 * j] = (g[2 * j] - re) * col[0];
-      g[2 * j + 1] = (g[2 * j + 1] - im) * col[0];
-    }
-    std::memcpy(x + 2 * k1, g, sizeof(float) * 2 * static_cast<size_t>(nc));
+  for (int j = 0; j < nc; ++j) {
+    const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
+    const float yr = g[2 * j] * col[0], yi = g[2 * j + 1] * col[0];
+    g[2 * j] = yr;
+    g[2 * j + 1] = yi;
+    sub_scaled(g + 2 * (j + 1), col + 2, nr - j - 1, yr, yi);
   }
+  std::memcpy(x + 2 * k1, g, sizeof(float) * 2 * static_cast<size_t>(nc));
+  for (int i = nc; i < nr; ++i) {
+    float* dst = owner && owner[rows[i]] != part ? away : x;
+    dst[2 * rows[i]] = g[2 * i];
+    dst[2 * rows[i] + 1] = g[2 * i + 1];
+  }
+}
+
+// The backward step of supernode sn (L^H x = y): reads its rows (its ancestors' are final), writes
+// only its own columns.
+WEFM_AVX2 void backward_supernode(const SupernodalView& f, const float* values, int sn, float* x, float* g) {
+  const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
+  const int* rows = f.s + f.pi[sn];
+  const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
+  std::memcpy(g, x + 2 * k1, sizeof(float) * 2 * static_cast<size_t>(nc));
+  for (int i = nc; i < nr; ++i) {
+    g[2 * i] = x[2 * rows[i]];
+    g[2 * i + 1] = x[2 * rows[i] + 1];
+  }
+  for (int j = nc - 1; j >= 0; --j) {
+    const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
+    float re, im;
+    dot_conj(col + 2, g + 2 * (j + 1), nr - j - 1, re, im);
+    g[2 * j] = (g[2 * j] - re) * col[0];
+    g[2 * j + 1] = (g[2 * j + 1] - im) * col[0];
+  }
+  std::memcpy(x + 2 * k1, g, sizeof(float) * 2 * static_cast<size_t>(nc));
 }
 
 #undef WEFM_AVX2
@@ -232,6 +248,7 @@ bool FloatSupernodalFactor::convert_in_place(const SupernodalView& f) {
   f_ = f;
   values_ = reinterpret_cast<const float*>(f.x);
   max_rows_ = max_rows;
+  plan_parts();
   return true;
 }
 
@@ -248,16 +265,116 @@ void FloatSupernodalFactor::release_unused() const {
 void FloatSupernodalFactor::clear() {
   values_ = nullptr;
   std::vector<std::complex<float>>().swap(work_);
-  std::vector<std::complex<float>>().swap(gather_);
+  for (auto& g : gather_) std::vector<std::complex<float>>().swap(g);
+  for (auto& a : away_) std::vector<std::complex<float>>().swap(a);
+  std::vector<std::uint8_t>().swap(owner_);
+  for (auto& p : part_super_) std::vector<int>().swap(p);
+  std::vector<int>().swap(rest_super_);
+  std::vector<int>().swap(rest_cols_);
   f_ = SupernodalView();
   max_rows_ = 0;
+}
+
+void FloatSupernodalFactor::plan_parts() {
+  // Two groups of disjoint subtrees of the supernodal elimination tree share no column: their
+  // forward and backward steps can run at once, and only their common ancestors (the top
+  // separators of the nested dissection: a few percent of the factor) wait for both. The plan
+  // depends on the factor alone, never on the thread count, so neither does the result.
+  owner_.clear();
+  for (auto& p : part_super_) p.clear();
+  rest_super_.clear();
+  rest_cols_.clear();
+  const int ns = f_.nsuper, n = f_.n;
+  std::vector<int> col_sn(static_cast<size_t>(n));
+  std::vector<int> parent(static_cast<size_t>(ns), -1), first(static_cast<size_t>(ns)), count(static_cast<size_t>(ns), 1);
+  std::vector<double> work(static_cast<size_t>(ns));
+  for (int sn = 0; sn < ns; ++sn)
+    for (int c = f_.super[sn]; c < f_.super[sn + 1]; ++c) col_sn[static_cast<size_t>(c)] = sn;
+  for (int sn = 0; sn < ns; ++sn) {
+    const int nc = f_.super[sn + 1] - f_.super[sn], nr = f_.pi[sn + 1] - f_.pi[sn];
+    work[static_cast<size_t>(sn)] = static_cast<double>(nr) * nc + nr;
+    first[static_cast<size_t>(sn)] = sn;
+    if (nr > nc) {
+      const int* rows = f_.s + f_.pi[sn];
+      const int r = *std::min_element(rows + nc, rows + nr);
+      if (r < 0 || r >= n) return;
+      parent[static_cast<size_t>(sn)] = col_sn[static_cast<size_t>(r)];
+      if (parent[static_cast<size_t>(sn)] <= sn) return;  // not postordered: keep the serial solve
+    }
+  }
+  std::vector<double> subtree(work);
+  std::vector<std::vector<int>> children(static_cast<size_t>(ns));
+  std::vector<int> roots;
+  for (int sn = 0; sn < ns; ++sn) {
+    const int p = parent[static_cast<size_t>(sn)];
+    if (count[static_cast<size_t>(sn)] != sn - first[static_cast<size_t>(sn)] + 1) return;  // a subtree must be a range
+    if (p < 0) {
+      roots.push_back(sn);
+      continue;
+    }
+    subtree[static_cast<size_t>(p)] += subtree[static_cast<size_t>(sn)];
+    count[static_cast<size_t>(p)] += count[static_cast<size_t>(sn)];
+    first[static_cast<size_t>(p)] = std::min(first[static_cast<size_t>(p)], first[static_cast<size_t>(sn)]);
+    children[static_cast<size_t>(p)].push_back(sn);
+  }
+  double total = 0;
+  for (int r : roots) total += subtree[static_cast<size_t>(r)];
+  // Split the heaviest subtree into its children while that shortens the longest path (the larger
+  // part plus the rest); the subtrees go to the lighter part, heaviest first.
+  std::vector<int> cand = roots, best_cand;
+  std::vector<int> best_bin;
+  double best_cost = 0.9 * total;  // below 10% saved, stay serial
+  for (int round = 0; round < 64 && !cand.empty(); ++round) {
+    std::sort(cand.begin(), cand.end(), [&](int a, int b) {
+      return subtree[static_cast<size_t>(a)] != subtree[static_cast<size_t>(b)] ? subtree[static_cast<size_t>(a)] > subtree[static_cast<size_t>(b)] : a < b;
+    });
+    double bins[2] = {0, 0}, in_parts = 0;
+    std::vector<int> bin(cand.size());
+    for (size_t i = 0; i < cand.size(); ++i) {
+      const int b = bins[1] < bins[0] ? 1 : 0;
+      bin[i] = b;
+      bins[b] += subtree[static_cast<size_t>(cand[i])];
+      in_parts += subtree[static_cast<size_t>(cand[i])];
+    }
+    const double cost = std::max(bins[0], bins[1]) + (total - in_parts);
+    if (cost < best_cost) {
+      best_cost = cost;
+      best_cand = cand;
+      best_bin = bin;
+    }
+    const int heavy = cand.front();
+    cand.erase(cand.begin());
+    for (int c : children[static_cast<size_t>(heavy)]) cand.push_back(c);
+  }
+  if (best_cand.empty()) return;
+  owner_.assign(static_cast<size_t>(n), 0);
+  std::vector<std::uint8_t> sn_owner(static_cast<size_t>(ns), 0);
+  for (size_t i = 0; i < best_cand.size(); ++i)
+    for (int sn = first[static_cast<size_t>(best_cand[i])]; sn <= best_cand[i]; ++sn) sn_owner[static_cast<size_t>(sn)] = static_cast<std::uint8_t>(1 + best_bin[i]);
+  for (int sn = 0; sn < ns; ++sn) {
+    const std::uint8_t o = sn_owner[static_cast<size_t>(sn)];
+    (o == 0 ? rest_super_ : part_super_[o - 1]).push_back(sn);
+    for (int c = f_.super[sn]; c < f_.super[sn + 1]; ++c) {
+      owner_[static_cast<size_t>(c)] = o;
+      if (o == 0) rest_cols_.push_back(c);
+    }
+  }
 }
 
 void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<double>* x, int cols) const {
 #ifdef WEFM_FLOAT_FACTOR_X86
   const int n = f_.n;
   work_.resize(static_cast<size_t>(n));
-  gather_.resize(static_cast<size_t>(max_rows_));
+  for (auto& g : gather_) g.resize(static_cast<size_t>(max_rows_));
+  const bool split = !owner_.empty();
+  if (split)
+    for (auto& a : away_) a.resize(static_cast<size_t>(n));
+  float* w = reinterpret_cast<float*>(work_.data());
+  auto run_parts = [&](const std::function<void(int)>& part) {
+    parallel_for(threads_, 2, [&](Index p0, Index p1) {
+      for (Index p = p0; p < p1; ++p) part(static_cast<int>(p));
+    }, 1);
+  };
   for (int c = 0; c < cols; ++c) {
     const std::complex<double>* bc = b + static_cast<size_t>(c) * n;
     std::complex<double>* xc = x + static_cast<size_t>(c) * n;
@@ -275,7 +392,27 @@ void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<do
       const std::complex<double> v = bc[f_.perm[k]] * scale;
       work_[static_cast<size_t>(k)] = std::complex<float>(static_cast<float>(v.real()), static_cast<float>(v.imag()));
     }
-    solve_avx2(f_, values_, reinterpret_cast<float*>(work_.data()), reinterpret_cast<float*>(gather_.data()));
+    float* g0 = reinterpret_cast<float*>(gather_[0].data());
+    if (!split) {
+      for (int sn = 0; sn < f_.nsuper; ++sn) forward_supernode(f_, values_, sn, w, g0, nullptr, 0, nullptr);
+      for (int sn = f_.nsuper - 1; sn >= 0; --sn) backward_supernode(f_, values_, sn, w, g0);
+    } else {
+      // Each part's updates of the rest's columns go to its own buffer, added in a fixed order.
+      for (auto& a : away_)
+        for (int k : rest_cols_) a[static_cast<size_t>(k)] = std::complex<float>(0, 0);
+      run_parts([&](int p) {
+        float* g = reinterpret_cast<float*>(gather_[static_cast<size_t>(p)].data());
+        float* away = reinterpret_cast<float*>(away_[static_cast<size_t>(p)].data());
+        for (int sn : part_super_[p]) forward_supernode(f_, values_, sn, w, g, owner_.data(), static_cast<std::uint8_t>(p + 1), away);
+      });
+      for (int k : rest_cols_) work_[static_cast<size_t>(k)] = (work_[static_cast<size_t>(k)] + away_[0][static_cast<size_t>(k)]) + away_[1][static_cast<size_t>(k)];
+      for (int sn : rest_super_) forward_supernode(f_, values_, sn, w, g0, nullptr, 0, nullptr);
+      for (auto it = rest_super_.rbegin(); it != rest_super_.rend(); ++it) backward_supernode(f_, values_, *it, w, g0);
+      run_parts([&](int p) {
+        float* g = reinterpret_cast<float*>(gather_[static_cast<size_t>(p)].data());
+        for (auto it = part_super_[p].rbegin(); it != part_super_[p].rend(); ++it) backward_supernode(f_, values_, *it, w, g);
+      });
+    }
     for (int k = 0; k < n; ++k) {
       const std::complex<float> v = work_[static_cast<size_t>(k)];
       xc[f_.perm[k]] = std::complex<double>(v.real(), v.imag()) * unscale;

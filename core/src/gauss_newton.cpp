@@ -10,6 +10,7 @@
 
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
+#include "wefm/core/parallel.hpp"
 
 namespace wefm {
 
@@ -218,61 +219,82 @@ void GaussNewton::linearise(const VectorXc& z, double s, VectorXc& g, double& en
   } else {
     // A triangle at a time: its three half-edges' rows all live on its three uses, so their
     // products are summed into one 3x3 block (Hermitian Kc, symmetric S) and scattered once.
+    // The uses are cut into two halves, whatever the thread count: each half writes the entries of
+    // its own columns and the gradient of its own uses, in triangle order (so every entry gets the
+    // sums of the serial pass, in the same order), and a triangle with uses in both halves is
+    // computed by both. The energy is summed per half (a triangle counts in the half of its first
+    // use) and the halves added in order.
     Complex* kc = Kc_.valuePtr();
     Complex* sv = S_.data();
     const int* outer = Kc_.outerIndexPtr();
     const size_t nt = tp_.corner_use.size() / 3;
-    for (size_t t = 0; t < nt; ++t) {
-      const Index u[3] = {tp_.corner_use[3 * t], tp_.corner_use[3 * t + 1], tp_.corner_use[3 * t + 2]};
-      const Complex zc[3] = {z[u[0]], z[u[1]], z[u[2]]};
-      Complex kl[3][3] = {}, sl[3][3] = {}, gl[3] = {};
-      for (int j = 0; j < 3; ++j) {
-        const size_t h = 3 * t + static_cast<size_t>(j);
-        HalfEdgeRow row;
-        half_edge_row(c_, h, sw_[h], zc, j, s, row);
-        len_[h] = row.len;
-        const Complex r = row.p - row.q;
-        energy += std::norm(r);
-        for (int a = 0; a < 3; ++a) {
-          gl[a] += cmul(row.l[a], r) + row.m[a] * std::conj(r);
-          for (int b = a; b < 3; ++b) {
-            kl[a][b] += cmul(row.l[a], row.l[b]) + cmul(row.m[b], row.m[a]);
-            sl[a][b] += cmul(row.l[a], row.m[b]) + cmul(row.l[b], row.m[a]);
+    double half_energy[kHalves] = {};
+    parallel_for(threads_, kHalves, [&](Index part0, Index part1) {
+      for (Index part = part0; part < part1; ++part) {
+        const Index lo = static_cast<Index>(static_cast<std::int64_t>(n) * part / kHalves);
+        const Index hi = static_cast<Index>(static_cast<std::int64_t>(n) * (part + 1) / kHalves);
+        double e = 0;
+        for (size_t t = 0; t < nt; ++t) {
+          const Index u[3] = {tp_.corner_use[3 * t], tp_.corner_use[3 * t + 1], tp_.corner_use[3 * t + 2]};
+          const bool mine[3] = {u[0] >= lo && u[0] < hi, u[1] >= lo && u[1] < hi, u[2] >= lo && u[2] < hi};
+          if (!mine[0] && !mine[1] && !mine[2]) continue;
+          const Complex zc[3] = {z[u[0]], z[u[1]], z[u[2]]};
+          Complex kl[3][3] = {}, sl[3][3] = {}, gl[3] = {};
+          double et = 0;
+          for (int j = 0; j < 3; ++j) {
+            const size_t h = 3 * t + static_cast<size_t>(j);
+            HalfEdgeRow row;
+            half_edge_row(c_, h, sw_[h], zc, j, s, row);
+            if (mine[0]) len_[h] = row.len;
+            const Complex r = row.p - row.q;
+            et += std::norm(r);
+            for (int a = 0; a < 3; ++a) {
+              gl[a] += cmul(row.l[a], r) + row.m[a] * std::conj(r);
+              for (int b = a; b < 3; ++b) {
+                kl[a][b] += cmul(row.l[a], row.l[b]) + cmul(row.m[b], row.m[a]);
+                sl[a][b] += cmul(row.l[a], row.m[b]) + cmul(row.l[b], row.m[a]);
+              }
+            }
+          }
+          // The shape barrier's row of this triangle (real r, entries (l, conj(l))), when active.
+          double rb = 0;
+          std::array<Complex, 3> lb;
+          if (barrier_.row(t, zc[0], zc[1], zc[2], rb, lb)) {
+            et += rb * rb;
+            for (int a = 0; a < 3; ++a) {
+              gl[a] += 2.0 * rb * std::conj(lb[static_cast<size_t>(a)]);
+              for (int b = a; b < 3; ++b) {
+                kl[a][b] += 2.0 * cmul(lb[static_cast<size_t>(a)], lb[static_cast<size_t>(b)]);
+                sl[a][b] += 2.0 * std::conj(lb[static_cast<size_t>(a)] * lb[static_cast<size_t>(b)]);
+              }
+            }
+          }
+          if (mine[0]) e += et;
+          const std::uint8_t* off = &block_offset_[9 * t];
+          auto slot_of = [&](int a, int b) {
+            const std::uint8_t o = off[3 * a + b];
+            return o != kFarOffset ? outer[u[b]] + o : slot(u[a], u[b]);
+          };
+          for (int a = 0; a < 3; ++a) {
+            if (mine[a]) g[u[a]] += gl[a];
+            for (int b = a; b < 3; ++b) {
+              if (mine[b]) {  // entry (u[a], u[b]) lives in column u[b]
+                const int ab = slot_of(a, b);
+                kc[ab] += kl[a][b];
+                sv[ab] += sl[a][b];
+              }
+              if (b != a && mine[a]) {
+                const int ba = slot_of(b, a);
+                kc[ba] += std::conj(kl[a][b]);
+                sv[ba] += sl[a][b];
+              }
+            }
           }
         }
+        half_energy[part] = e;
       }
-      // The shape barrier's row of this triangle (real r, entries (l, conj(l))), when active.
-      double rb = 0;
-      std::array<Complex, 3> lb;
-      if (barrier_.row(t, zc[0], zc[1], zc[2], rb, lb)) {
-        energy += rb * rb;
-        for (int a = 0; a < 3; ++a) {
-          gl[a] += 2.0 * rb * std::conj(lb[static_cast<size_t>(a)]);
-          for (int b = a; b < 3; ++b) {
-            kl[a][b] += 2.0 * cmul(lb[static_cast<size_t>(a)], lb[static_cast<size_t>(b)]);
-            sl[a][b] += 2.0 * std::conj(lb[static_cast<size_t>(a)] * lb[static_cast<size_t>(b)]);
-          }
-        }
-      }
-      const std::uint8_t* off = &block_offset_[9 * t];
-      auto slot_of = [&](int a, int b) {
-        const std::uint8_t o = off[3 * a + b];
-        return o != kFarOffset ? outer[u[b]] + o : slot(u[a], u[b]);
-      };
-      for (int a = 0; a < 3; ++a) {
-        g[u[a]] += gl[a];
-        for (int b = a; b < 3; ++b) {
-          const int ab = slot_of(a, b);
-          kc[ab] += kl[a][b];
-          sv[ab] += sl[a][b];
-          if (b != a) {
-            const int ba = slot_of(b, a);
-            kc[ba] += std::conj(kl[a][b]);
-            sv[ba] += sl[a][b];
-          }
-        }
-      }
-    }
+    }, 1);
+    for (double e : half_energy) energy += e;
   }
   if (B_ && B_->nonZeros()) {
     // The boundary term is complex-linear: B^H B (constant) and B^H (B z).
@@ -360,29 +382,54 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, S
       for (size_t h = 0; h < len_.size(); ++h)
         rho_ratio(h, std::abs(z[tp_.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))]] - z[tp_.corner_use[h]]));
   } else {
-    // The rows' values only (no derivatives).
+    // The rows' values only (no derivatives), in kBlocks fixed blocks of triangles whatever the
+    // thread count, their sums added in block order.
     const size_t nt = tp_.corner_use.size() / 3;
-    for (size_t t = 0; t < nt; ++t) {
-      const Complex zc[3] = {z[tp_.corner_use[3 * t]], z[tp_.corner_use[3 * t + 1]], z[tp_.corner_use[3 * t + 2]]};
-      for (int j = 0; j < 3; ++j) {
-        const size_t h = 3 * t + static_cast<size_t>(j);
-        const Complex d = zc[(j + 1) % 3] - zc[j];
-        const double len = std::sqrt(std::norm(d));
-        const double mag = c_.beta[h] * ratio_pow(c_.length[h] / std::max(len, 1e-12), s);
-        const Complex r = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d - Complex(-mag * d.imag(), mag * d.real()));
-        e += std::norm(r);
-        if (rho_change) rho_ratio(h, len);
-        if (sums) {
-          const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
-          const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());
-          ps.P += std::norm(p);
-          ps.Q += p.real() * q.real() + p.imag() * q.imag();
-          ps.R += std::norm(q);
+    struct BlockSums {
+      double e = 0, change = 0;
+      ScaleSums ps;
+    };
+    BlockSums blocks[kBlocks];
+    parallel_for(threads_, kBlocks, [&](Index b0, Index b1) {
+      for (Index blk = b0; blk < b1; ++blk) {
+        BlockSums& bs = blocks[blk];
+        const size_t t0 = nt * static_cast<size_t>(blk) / kBlocks, t1 = nt * static_cast<size_t>(blk + 1) / kBlocks;
+        for (size_t t = t0; t < t1; ++t) {
+          const Complex zc[3] = {z[tp_.corner_use[3 * t]], z[tp_.corner_use[3 * t + 1]], z[tp_.corner_use[3 * t + 2]]};
+          for (int j = 0; j < 3; ++j) {
+            const size_t h = 3 * t + static_cast<size_t>(j);
+            const Complex d = zc[(j + 1) % 3] - zc[j];
+            const double len = std::sqrt(std::norm(d));
+            const double mag = c_.beta[h] * ratio_pow(c_.length[h] / std::max(len, 1e-12), s);
+            const Complex r = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d - Complex(-mag * d.imag(), mag * d.real()));
+            bs.e += std::norm(r);
+            if (rho_change) {
+              const double L = c_.length[h];
+              const double before = len_[h] > 0 && L > 0 ? L / len_[h] : 1.0;
+              const double after = len > 0 && L > 0 ? L / len : 1.0;
+              bs.change = std::max(bs.change, std::abs(after / before - 1.0));
+            }
+            if (sums) {
+              const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
+              const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());
+              bs.ps.P += std::norm(p);
+              bs.ps.Q += p.real() * q.real() + p.imag() * q.imag();
+              bs.ps.R += std::norm(q);
+            }
+          }
+          double rb = 0;
+          std::array<Complex, 3> lb;
+          if (barrier_.row(t, zc[0], zc[1], zc[2], rb, lb)) bs.ps.barrier += rb * rb;
         }
       }
-      double rb = 0;
-      std::array<Complex, 3> lb;
-      if (barrier_.row(t, zc[0], zc[1], zc[2], rb, lb)) ps.barrier += rb * rb;
+    }, 1);
+    for (const BlockSums& bs : blocks) {
+      e += bs.e;
+      change = std::max(change, bs.change);
+      ps.P += bs.ps.P;
+      ps.Q += bs.ps.Q;
+      ps.R += bs.ps.R;
+      ps.barrier += bs.ps.barrier;
     }
   }
   if (B_ && B_->nonZeros()) {
@@ -520,16 +567,22 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
   const int* outer = Kc.outerIndexPtr();
   const int* inner = Kc.innerIndexPtr();
   const Complex* kv = Kc.valuePtr();
-  // q = (H + diag(shift)) p, H p = Kc p + S conj(p) in complex form.
+  // q = (H + diag(shift)) p, H p = Kc p + S conj(p) in complex form. Row i of Kc is the conjugate
+  // of its column i (Hermitian) and row i of S its column i (symmetric): each q_i is gathered from
+  // one column, so the rows split over threads with the same sums whatever their number.
   auto apply = [&](const Eigen::VectorXd& p, Eigen::VectorXd& q) {
     const Eigen::Map<const VectorXc> pc = as_complex(p);
     Eigen::Map<VectorXc> qc = as_complex(q);
-    qc.setZero();
-    for (Index col = 0; col < pc.size(); ++col) {
-      const Complex x = pc[col], cx = std::conj(x);
-      for (int v = outer[col]; v < outer[col + 1]; ++v) qc[inner[v]] += kv[v] * x + S[v] * cx;
-    }
-    q += shift.cwiseProduct(p);
+    parallel_for(threads_, static_cast<Index>(pc.size()), [&](Index i0, Index i1) {
+      for (Index i = i0; i < i1; ++i) {
+        Complex acc(0, 0);
+        for (int v = outer[i]; v < outer[i + 1]; ++v) {
+          const Complex x = pc[inner[v]];
+          acc += cmul(kv[v], x) + S[v] * std::conj(x);
+        }
+        qc[i] = acc + Complex(shift[2 * i] * pc[i].real(), shift[2 * i + 1] * pc[i].imag());
+      }
+    });
   };
   Eigen::VectorXd r(nr), zr(nr), p(nr), q(nr);
   Eigen::MatrixXd zr_m;
@@ -680,27 +733,35 @@ double GaussNewton::first_flip(const VectorXc& z, const VectorXc& dz) const {
   // positive now, the smallest t > 0 where it vanishes. Triangles already flipped (or flat) are
   // not held: they may unflip.
   auto cross = [](Complex a, Complex b) { return a.real() * b.imag() - a.imag() * b.real(); };
-  double t_min = std::numeric_limits<double>::infinity();
+  // A minimum: the same whatever the blocks' order.
   const size_t nt = tp_.corner_use.size() / 3;
-  for (size_t t = 0; t < nt; ++t) {
-    const Index a = tp_.corner_use[3 * t], b = tp_.corner_use[3 * t + 1], c = tp_.corner_use[3 * t + 2];
-    const Complex p1 = z[b] - z[a], p2 = z[c] - z[a], q1 = dz[b] - dz[a], q2 = dz[c] - dz[a];
-    const double A0 = cross(p1, p2), A1 = cross(p1, q2) + cross(q1, p2), A2 = cross(q1, q2);
-    if (!(A0 > 0)) continue;
-    double root = std::numeric_limits<double>::infinity();
-    if (std::abs(A2) <= 1e-14 * (std::abs(A1) + A0)) {
-      if (A1 < 0) root = -A0 / A1;
-    } else {
-      const double disc = A1 * A1 - 4 * A2 * A0;
-      if (disc >= 0) {
-        // Roots by the stable formula; the smallest positive one.
-        const double qq = -0.5 * (A1 + std::copysign(std::sqrt(disc), A1));
-        for (double r : {qq / A2, qq != 0 ? A0 / qq : std::numeric_limits<double>::infinity()})
-          if (r > 0) root = std::min(root, r);
+  double block_min[kBlocks];
+  std::fill(block_min, block_min + kBlocks, std::numeric_limits<double>::infinity());
+  parallel_for(threads_, kBlocks, [&](Index b0, Index b1) {
+    for (Index blk = b0; blk < b1; ++blk) {
+      double& t_min = block_min[blk];
+      for (size_t t = nt * static_cast<size_t>(blk) / kBlocks; t < nt * static_cast<size_t>(blk + 1) / kBlocks; ++t) {
+        const Index a = tp_.corner_use[3 * t], b = tp_.corner_use[3 * t + 1], c = tp_.corner_use[3 * t + 2];
+        const Complex p1 = z[b] - z[a], p2 = z[c] - z[a], q1 = dz[b] - dz[a], q2 = dz[c] - dz[a];
+        const double A0 = cross(p1, p2), A1 = cross(p1, q2) + cross(q1, p2), A2 = cross(q1, q2);
+        if (!(A0 > 0)) continue;
+        double root = std::numeric_limits<double>::infinity();
+        if (std::abs(A2) <= 1e-14 * (std::abs(A1) + A0)) {
+          if (A1 < 0) root = -A0 / A1;
+        } else {
+          const double disc = A1 * A1 - 4 * A2 * A0;
+          if (disc >= 0) {
+            // Roots by the stable formula; the smallest positive one.
+            const double qq = -0.5 * (A1 + std::copysign(std::sqrt(disc), A1));
+            for (double r : {qq / A2, qq != 0 ? A0 / qq : std::numeric_limits<double>::infinity()})
+              if (r > 0) root = std::min(root, r);
+          }
+        }
+        t_min = std::min(t_min, root);
       }
     }
-    t_min = std::min(t_min, root);
-  }
+  }, 1);
+  const double t_min = *std::min_element(block_min, block_min + kBlocks);
   return t_min;
 }
 

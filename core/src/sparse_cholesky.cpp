@@ -123,7 +123,7 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
                     pattern_outer_.size() == static_cast<size_t>(K.outerSize() + 1) &&
                     std::equal(pattern_outer_.begin(), pattern_outer_.end(), K.outerIndexPtr()) &&
                     std::equal(pattern_inner_.begin(), pattern_inner_.end(), K.innerIndexPtr());
-  const SerialOpenMP serial(threads_ <= 1);
+  const SerialOpenMP serial(true);
   impl_->single.clear();  // its values are CHOLMOD's, which the factorisation overwrites
   if (!same) {
     const double t0 = now();
@@ -232,11 +232,17 @@ bool SparseCholeskyT<Scalar>::single_precision() const {
 }
 
 template <class Scalar>
+std::size_t SparseCholeskyT<Scalar>::single_precision_shared_columns() const {
+  return impl_->single.shared_columns();
+}
+
+template <class Scalar>
 typename SparseCholeskyT<Scalar>::Dense SparseCholeskyT<Scalar>::solve(const Dense& rhs) {
   const double t0 = now();
   Dense x;
   if (!impl_->single.empty()) {
     x.resize(rhs.rows(), rhs.cols());
+    impl_->single.set_threads(threads_);
     impl_->single.solve(rhs.data(), x.data(), static_cast<int>(rhs.cols()));
     counters_.solves += rhs.cols();
     counters_.time_solve += now() - t0;

@@ -1,12 +1,14 @@
-// Coefficients and assembly split over threads give the same bits as one thread, and the matrix
-// assembled straight into its pattern is the A^H A + B^H B it replaces.
+// Coefficients, assembly and whole solves split over threads give the same bits as one thread, and
+// the matrix assembled straight into its pattern is the A^H A + B^H B it replaces.
 #include <cstring>
 
 #include <doctest/doctest.h>
 
 #include "meshes.hpp"
+#include "solve_helpers.hpp"
 #include "wefm/core/coefficients.hpp"
 #include "wefm/core/energy.hpp"
+#include "wefm/core/float_supernodal_solve.hpp"
 
 using namespace wefm;
 
@@ -78,6 +80,31 @@ TEST_CASE("coefficients and assembly are bit-identical for 1 and 4 threads") {
       CHECK(same_bits(D1, assemble_energy(tp, c1, sigma1, 0.5, form, &B, 4)));
     }
   }
+}
+
+TEST_CASE("a whole solve through the continuation is bit-identical for 1 and 3 threads") {
+  // The continuation's linearisation (two halves of the uses), energy passes (fixed blocks), CG
+  // products (one row per output) and the float preconditioner's split solves; the factorisation
+  // runs on one thread whatever the count. Every factor takes the float path here.
+  set_float_factor_min_entries(0);
+  for (const Case& cs : cases()) {
+    CAPTURE(cs.name);
+    Options o = test::with_s(1.0);
+    const std::vector<std::pair<Index, Index>>& seams = cs.spec.seams;
+    o.threads = 1;
+    const FlattenResult one = test::solve(cs.mesh, o, seams);
+    CHECK(one.report.quality.flips == 0);
+    CHECK(one.report.iterative_iterations > 0);
+    for (int threads : {3}) {
+      CAPTURE(threads);
+      o.threads = threads;
+      const FlattenResult more = test::solve(cs.mesh, o, seams);
+      REQUIRE(more.uv.size() == one.uv.size());
+      CHECK(std::memcmp(more.uv.data(), one.uv.data(), sizeof(Complex) * static_cast<size_t>(one.uv.size())) == 0);
+      CHECK(more.report.iterative_iterations == one.report.iterative_iterations);
+    }
+  }
+  set_float_factor_min_entries(kFloatFactorMinEntries);
 }
 
 TEST_CASE("K assembled into its pattern equals A^H A + B^H B and is exactly Hermitian") {

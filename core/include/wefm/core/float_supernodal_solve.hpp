@@ -12,9 +12,12 @@
 //
 // The kernels are AVX2 + FMA, chosen at run time (`__builtin_cpu_supports`): a machine without them
 // (or WEFM_FLOAT_FACTOR=0 in the environment, or set_float_factor_kernels(Fallback)) keeps the
-// double factor and CHOLMOD's own solves. The solves run on the calling thread, supernode after
-// supernode in a fixed order, so their result does not depend on the number of threads.
+// double factor and CHOLMOD's own solves. The solves split the elimination tree into two groups of
+// disjoint subtrees and their common ancestors (plan_parts); with set_threads(2 or more) the two
+// groups run at once. The split and every sum's order are fixed by the factor alone, so the result
+// does not depend on the number of threads.
 #include <complex>
+#include <cstdint>
 #include <cstddef>
 #include <vector>
 
@@ -77,12 +80,25 @@ class FloatSupernodalFactor {
   // a power of two to a largest entry of 1 before it is rounded to float (exact, and the
   // preconditioner stays homogeneous whatever the residual's size), solved, and scaled back.
   void solve(const std::complex<double>* b, std::complex<double>* x, int cols) const;
+  // Threads for solve(): 1 (or less) runs everything on the calling thread, 2 or more runs the
+  // two parts of the tree at once.
+  void set_threads(int threads) { threads_ = threads; }
+  // Columns in the part of the tree that waits for both groups (0 when the solve is not split).
+  std::size_t shared_columns() const { return rest_cols_.size(); }
 
  private:
+  void plan_parts();
   SupernodalView f_;
   const float* values_ = nullptr;  // (re, im) interleaved over f_.x's first half
   int max_rows_ = 0;  // rows of the tallest supernode: the size of the gather buffer
-  mutable std::vector<std::complex<float>> work_, gather_;
+  mutable std::vector<std::complex<float>> work_;
+  mutable std::vector<std::complex<float>> gather_[2];  // per part (one each while they run at once)
+  // The split: per column 1 or 2 (its part), 0 (the common ancestors); each part's supernodes and
+  // the rest's, increasing; the rest's columns; each part's updates of those columns.
+  std::vector<std::uint8_t> owner_;
+  std::vector<int> part_super_[2], rest_super_, rest_cols_;
+  mutable std::vector<std::complex<float>> away_[2];
+  int threads_ = 1;
 };
 
 }  // namespace wefm

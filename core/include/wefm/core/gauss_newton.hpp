@@ -59,6 +59,10 @@ class GaussNewton {
   // Returns false (and shares nothing) when seams are substituted.
   bool share_factor(SparseCholesky& chol, Index x0, Index x1);
 
+  // Threads for the linearisation, the energy passes and the CG products (Options::threads; the
+  // preconditioner's own in its factor). Every sum runs in an order fixed by the face alone.
+  void set_threads(int threads) { threads_ = threads; }
+
   // The point sizes are changed about: one the caller's constraints keep fixed under scaling.
   void set_scale_center(Complex c) { center_ = c; }
 
@@ -220,6 +224,9 @@ class GaussNewton {
   static constexpr int kMaxCgIterations = 50;
   std::int64_t pcg_iterations_ = 0;
   double t_assembly_ = 0;
+  int threads_ = 1;
+  static constexpr Index kHalves = 2;  // the linearisation's split of the uses
+  static constexpr Index kBlocks = 8;  // the energy passes' blocks of triangles
 };
 
 }  // namespace wefm

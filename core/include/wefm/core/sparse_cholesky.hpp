@@ -51,10 +51,14 @@ class SparseCholeskyT {
   // whether the float factor is in use (false: the double factor stays as it was).
   bool keep_single_precision();
   bool single_precision() const;
-  // Options::threads. With threads <= 1 CHOLMOD's OpenMP loops run on the calling thread alone:
-  // its supernodal factorisation opens a region of 4 threads (a compile-time constant of the
-  // library) per large supernode, and on 2 cores their wake-ups cost 1.4 s of CPU time in a
-  // 1M-triangle s = 1 solve (2 factorisations; 14.9 -> 13.5 s), for the same bits.
+  // Columns of the single-precision factor that wait for both halves of its split solve (its
+  // elimination tree's common ancestors); 0 when there is no float factor or its solve is serial.
+  std::size_t single_precision_shared_columns() const;
+  // Options::threads: the threads of the single-precision solves (float_supernodal_solve.hpp).
+  // CHOLMOD's own OpenMP loops always run on the calling thread alone: its supernodal
+  // factorisation opens a region of 4 threads (a compile-time constant of the library) per large
+  // supernode, and on 2 cores their wake-ups cost 1.4 s of CPU time in a 1M-triangle s = 1 solve
+  // (2 factorisations; 14.9 -> 13.5 s), and their sums' order would depend on the thread count.
   void set_threads(int threads) { threads_ = threads; }
   // Options::memory_limit_mb: after each symbolic analysis, a factor whose values together with
   // `other_mb` (the rest of the solve, estimated by the caller) would exceed limit_mb is refused
