@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -34,7 +35,8 @@ const char* kUsage =
     "  --4m              add the 4M size\n"
     "  --s LIST          roll-out exponents (default 0,1,2)\n"
     "  --timeout SEC     per case; a case over it is killed and reported as timed out (default 1200)\n"
-    "  --threads N       wefm_options.threads (default 0)\n"
+    "  --threads N       wefm_options.threads of the library cases; the whole-process run passes it to\n"
+    "                    `wefm flatten --threads` (default: the machine's hardware threads, as the tool)\n"
     "  --cli PATH|none   wefm executable for the whole-process run (default: the build tree's apps/wefm)\n"
     "  --cli-s LIST      s values of the whole-process run (default 0), at the largest size\n"
     "  --cgal PATH|none  CGAL peer executable (default: wefm-bench-cgal next to this program, if built)\n"
@@ -105,7 +107,7 @@ struct Settings {
   std::vector<double> s{0, 1, 2};
   std::vector<double> cli_s{0};
   double timeout = 1200;
-  int threads = 0;
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::string cli, cgal, work = "/tmp", json = "bench-results.json", markdown = "bench-results.md";
   bool floor = true, io = true;
 };
@@ -152,7 +154,8 @@ Json cli_case(const Settings& st, Shape shape, int64_t size, double s) {
   }
   char sbuf[32];
   std::snprintf(sbuf, sizeof sbuf, "%g", s);
-  const ChildResult r = run_child({st.cli, "flatten", base + ".obj", "-o", base + "_uv.obj", "--s", sbuf, "--quiet", "--report", base + ".json"}, st.timeout);
+  const ChildResult r = run_child({st.cli, "flatten", base + ".obj", "-o", base + "_uv.obj", "--s", sbuf, "--quiet", "--report", base + ".json",
+                                   "--threads", std::to_string(st.threads)}, st.timeout);
   j["wall"] = r.wall;
   j["cpu_user"] = r.user;
   j["cpu_sys"] = r.sys;
@@ -183,6 +186,7 @@ int run_benchmark(const Settings& st, const std::string& command) {
   // caller's own setting of the tunable is kept (glibc.malloc.hugetlb=0 measures without).
   wefm_cli::add_huge_page_malloc_tunable();
   results["glibc_tunables"] = std::getenv("GLIBC_TUNABLES");
+  results["threads"] = st.threads;
   results["load_start"] = load_average();
   results["timeout"] = st.timeout;
   results["cases"] = Json::array();

@@ -50,6 +50,7 @@ int run_flatten(const std::vector<std::string>& argv) {
     print_help();
     return kExitOk;
   }
+  use_all_threads_unless_given(args, job.settings.options);
   if (args.positionals.size() != 1 || !args.has("output")) {
     std::fprintf(stderr, "wefm flatten: %s (usage: wefm flatten INPUT -o OUTPUT.obj [options])\n",
                  args.positionals.empty()  ? "missing INPUT"

@@ -286,6 +286,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     print_help();
     return kExitOk;
   }
+  use_all_threads_unless_given(args, s.options);
   if (args.positionals.size() != 1 || !args.has("output") || !args.has("size")) {
     std::fprintf(stderr, "wefm mesh: %s (usage: wefm mesh INPUT --size H -o MESH.obj)\n",
                  args.positionals.size() != 1 ? "expected one INPUT" : !args.has("output") ? "missing -o MESH.obj" : "missing --size H");

@@ -242,6 +242,7 @@ class Runner {
       return;
     if (!s_.report_path.empty()) {
       ReportContext ctx{job_.input, out_.outputs, out_.exit_code, out_.error, out_.time, out_.warnings};
+      ctx.threads = s_.options.threads;
       ctx.timings.total = ctx.timings.read + ctx.timings.setup + ctx.timings.solve;  // writing not yet done
       if (!done(write_report_json(s_.report_path, ctx, snap, error), "report", s_.report_path)) return;
     }

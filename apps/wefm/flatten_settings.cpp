@@ -1,6 +1,8 @@
 #include "flatten_settings.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <thread>
 
 #include "names.hpp"
 
@@ -58,7 +60,8 @@ std::vector<OptionSpec> solver_option_specs() {
        "force one edge's mode; EDGE is the topology file's id with --topology, else the library edge index", "",
        true},
       {"auto-cut", 0, "", "cut annuli and closed genus-0 faces automatically (no --seams/--topology)", d.auto_cut ? "on" : "off", false},
-      {"threads", 0, "N", "worker threads for assembly/quality (0 = 1)", std::to_string(d.threads), false},
+      {"threads", 0, "N", "threads of one face's solve (0 = 1); the layout is the same for any count",
+       "flatten, mesh: the machine's threads; batch, model, mesh-model: " + std::to_string(d.threads > 1 ? d.threads : 1), false},
       {"memory-limit", 0, "MB", "refuse a solve estimated above MB megabytes (exit 5; 0 = no limit)", num(d.memory_limit_mb), false},
       {"score-threshold", 0, "T", "stop after the conformal solve if its score >= T (2 = never)",
        num(d.score_threshold), false},
@@ -130,6 +133,10 @@ bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std
     settings.has_outer_loop = true;
   }
   return true;
+}
+
+void use_all_threads_unless_given(const ParsedArgs& args, wefm_options& options) {
+  if (!args.has("threads")) options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 }  // namespace wefm_cli

@@ -31,4 +31,9 @@ std::vector<OptionSpec> solver_option_specs();
 // malformed value (exit code 2).
 bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std::string& error);
 
+// The commands that solve one face at a time (flatten, mesh) give it every hardware thread unless
+// --threads says otherwise (the layout is the same for any count); batch and model run faces side
+// by side instead, one thread each.
+void use_all_threads_unless_given(const ParsedArgs& args, wefm_options& options);
+
 }  // namespace wefm_cli

@@ -114,6 +114,7 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
                   {"wall_before_report", number(ctx.timings.total)}};
   j["peak_memory_mb"] = number(r.peak_memory_mb);
   j["huge_page_malloc"] = huge_page_malloc_active();
+  j["threads"] = ctx.threads > 1 ? ctx.threads : 1;
   Json outputs = Json::object();
   for (const auto& [what, p] : ctx.outputs) outputs[key_of(what)] = p;
   j["outputs"] = outputs;

@@ -17,6 +17,7 @@ struct ReportContext {
   std::string message;
   Timings timings;
   std::vector<std::string> warnings;
+  int threads = 0;  // wefm_options.threads of the solve
 };
 
 int write_report_json(const std::string& path, const ReportContext& ctx, const FaceSnapshot& snap, std::string& error);

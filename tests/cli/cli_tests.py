@@ -467,6 +467,27 @@ def case_huge_page_malloc(tmp):
     check(len(set(outs.values())) == 1, "the UV OBJ depends on huge-page malloc")
 
 
+def case_threads(tmp):
+    # flatten uses every hardware thread unless told, and the thread count never changes the
+    # layout: the UV OBJ is byte-identical for --threads 1, 2, 3 and the default, at s = 1 (the
+    # continuation's threaded passes) as at s = 0.
+    V, T = meshes.patch()
+    src = os.path.join(tmp, "p.obj")
+    meshes.write_obj(src, V, T)
+    for s in ("0", "1"):
+        outs = {}
+        for name, extra in [("default", []), ("1", ["--threads", "1"]), ("2", ["--threads", "2"]), ("3", ["--threads", "3"])]:
+            out, rep = os.path.join(tmp, f"t{name}_s{s}.obj"), os.path.join(tmp, f"t{name}_s{s}.json")
+            run("flatten", src, "-o", out, "--report", rep, "--s", s, "-q", *extra, expect=0)
+            with open(out, "rb") as f:
+                outs[name] = f.read()
+            with open(rep) as f:
+                threads = json.load(f)["threads"]
+            expected = max(1, os.cpu_count() or 1) if name == "default" else int(name)
+            check(threads == expected, f"s={s} {name}: report threads {threads}, expected {expected}")
+        check(len(set(outs.values())) == 1, f"s={s}: the UV OBJ depends on the thread count")
+
+
 def case_png(tmp):
     V, T = meshes.patch()
     src = os.path.join(tmp, "p.obj")
@@ -548,7 +569,7 @@ CASES = {f"format_{fmt}": (lambda tmp, fmt=fmt: case_format(fmt, tmp)) for fmt i
 CASES.update(info=case_info, batch=case_batch, usage=case_usage, unreadable=case_unreadable, topology=case_topology,
              topology_bad=case_topology_bad, write_topology=case_write_topology, progress_quiet=case_progress_quiet,
              png=case_png, not_converged=case_not_converged, mesh=case_mesh, auto_cut=case_auto_cut,
-             huge_page_malloc=case_huge_page_malloc)
+             huge_page_malloc=case_huge_page_malloc, threads=case_threads)
 
 
 def main():
