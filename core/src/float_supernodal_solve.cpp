@@ -23,6 +23,8 @@ namespace wefm {
 
 namespace {
 
+constexpr Index kPassBlocks = 8;  // blocks of the residual's maximum
+
 std::atomic<int> g_kernels{static_cast<int>(FloatFactorKernels::Auto)};
 std::atomic<std::size_t> g_min_entries{kFloatFactorMinEntries};
 
@@ -378,8 +380,18 @@ void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<do
   for (int c = 0; c < cols; ++c) {
     const std::complex<double>* bc = b + static_cast<size_t>(c) * n;
     std::complex<double>* xc = x + static_cast<size_t>(c) * n;
+    // A maximum, and element-by-element conversions: the same bits split over threads.
+    double part_big[kPassBlocks] = {};
+    parallel_for(threads_, kPassBlocks, [&](Index b0, Index b1) {
+      for (Index blk = b0; blk < b1; ++blk) {
+        double m = 0;
+        for (int k = static_cast<int>(n * blk / kPassBlocks); k < static_cast<int>(n * (blk + 1) / kPassBlocks); ++k)
+          m = std::max(m, std::max(std::abs(bc[k].real()), std::abs(bc[k].imag())));
+        part_big[blk] = m;
+      }
+    }, 1);
     double big = 0;
-    for (int k = 0; k < n; ++k) big = std::max(big, std::max(std::abs(bc[k].real()), std::abs(bc[k].imag())));
+    for (double m : part_big) big = std::max(big, m);
     // An infinite entry gives NaN, as in double (NaN entries go through the kernels as NaN); zero, zero.
     if (!std::isfinite(big) || big == 0) {
       std::fill(xc, xc + n, big == 0 ? std::complex<double>(0, 0) : std::complex<double>(std::numeric_limits<double>::quiet_NaN(), 0));
@@ -388,10 +400,12 @@ void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<do
     int e = 0;
     std::frexp(big, &e);
     const double scale = std::ldexp(1.0, -e), unscale = std::ldexp(1.0, e);  // powers of two: exact
-    for (int k = 0; k < n; ++k) {
-      const std::complex<double> v = bc[f_.perm[k]] * scale;
-      work_[static_cast<size_t>(k)] = std::complex<float>(static_cast<float>(v.real()), static_cast<float>(v.imag()));
-    }
+    parallel_for(threads_, n, [&](Index k0, Index k1) {
+      for (Index k = k0; k < k1; ++k) {
+        const std::complex<double> v = bc[f_.perm[k]] * scale;
+        work_[static_cast<size_t>(k)] = std::complex<float>(static_cast<float>(v.real()), static_cast<float>(v.imag()));
+      }
+    });
     float* g0 = reinterpret_cast<float*>(gather_[0].data());
     if (!split) {
       for (int sn = 0; sn < f_.nsuper; ++sn) forward_supernode(f_, values_, sn, w, g0, nullptr, 0, nullptr);
@@ -413,10 +427,12 @@ void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<do
         for (auto it = part_super_[p].rbegin(); it != part_super_[p].rend(); ++it) backward_supernode(f_, values_, *it, w, g);
       });
     }
-    for (int k = 0; k < n; ++k) {
-      const std::complex<float> v = work_[static_cast<size_t>(k)];
-      xc[f_.perm[k]] = std::complex<double>(v.real(), v.imag()) * unscale;
-    }
+    parallel_for(threads_, n, [&](Index k0, Index k1) {
+      for (Index k = k0; k < k1; ++k) {
+        const std::complex<float> v = work_[static_cast<size_t>(k)];
+        xc[f_.perm[k]] = std::complex<double>(v.real(), v.imag()) * unscale;
+      }
+    });
   }
 #else
   (void)b;
