@@ -1,5 +1,6 @@
 #include "wefm/core/float_supernodal_solve.hpp"
 #include "wefm/core/parallel.hpp"
+#include "wefm/core/supernodal_split.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -278,89 +279,21 @@ void FloatSupernodalFactor::clear() {
 }
 
 void FloatSupernodalFactor::plan_parts() {
-  // Two groups of disjoint subtrees of the supernodal elimination tree share no column: their
-  // forward and backward steps can run at once, and only their common ancestors (the top
-  // separators of the nested dissection: a few percent of the factor) wait for both. The plan
-  // depends on the factor alone, never on the thread count, so neither does the result.
   owner_.clear();
   for (auto& p : part_super_) p.clear();
   rest_super_.clear();
   rest_cols_.clear();
-  const int ns = f_.nsuper, n = f_.n;
-  std::vector<int> col_sn(static_cast<size_t>(n));
-  std::vector<int> parent(static_cast<size_t>(ns), -1), first(static_cast<size_t>(ns)), count(static_cast<size_t>(ns), 1);
-  std::vector<double> work(static_cast<size_t>(ns));
-  for (int sn = 0; sn < ns; ++sn)
-    for (int c = f_.super[sn]; c < f_.super[sn + 1]; ++c) col_sn[static_cast<size_t>(c)] = sn;
-  for (int sn = 0; sn < ns; ++sn) {
-    const int nc = f_.super[sn + 1] - f_.super[sn], nr = f_.pi[sn + 1] - f_.pi[sn];
-    work[static_cast<size_t>(sn)] = static_cast<double>(nr) * nc + nr;
-    first[static_cast<size_t>(sn)] = sn;
-    if (nr > nc) {
-      const int* rows = f_.s + f_.pi[sn];
-      const int r = *std::min_element(rows + nc, rows + nr);
-      if (r < 0 || r >= n) return;
-      parent[static_cast<size_t>(sn)] = col_sn[static_cast<size_t>(r)];
-      if (parent[static_cast<size_t>(sn)] <= sn) return;  // not postordered: keep the serial solve
-    }
-  }
-  std::vector<double> subtree(work);
-  std::vector<std::vector<int>> children(static_cast<size_t>(ns));
-  std::vector<int> roots;
-  for (int sn = 0; sn < ns; ++sn) {
-    const int p = parent[static_cast<size_t>(sn)];
-    if (count[static_cast<size_t>(sn)] != sn - first[static_cast<size_t>(sn)] + 1) return;  // a subtree must be a range
-    if (p < 0) {
-      roots.push_back(sn);
-      continue;
-    }
-    subtree[static_cast<size_t>(p)] += subtree[static_cast<size_t>(sn)];
-    count[static_cast<size_t>(p)] += count[static_cast<size_t>(sn)];
-    first[static_cast<size_t>(p)] = std::min(first[static_cast<size_t>(p)], first[static_cast<size_t>(sn)]);
-    children[static_cast<size_t>(p)].push_back(sn);
-  }
-  double total = 0;
-  for (int r : roots) total += subtree[static_cast<size_t>(r)];
-  // Split the heaviest subtree into its children while that shortens the longest path (the larger
-  // part plus the rest); the subtrees go to the lighter part, heaviest first.
-  std::vector<int> cand = roots, best_cand;
-  std::vector<int> best_bin;
-  double best_cost = 0.9 * total;  // below 10% saved, stay serial
-  for (int round = 0; round < 64 && !cand.empty(); ++round) {
-    std::sort(cand.begin(), cand.end(), [&](int a, int b) {
-      return subtree[static_cast<size_t>(a)] != subtree[static_cast<size_t>(b)] ? subtree[static_cast<size_t>(a)] > subtree[static_cast<size_t>(b)] : a < b;
-    });
-    double bins[2] = {0, 0}, in_parts = 0;
-    std::vector<int> bin(cand.size());
-    for (size_t i = 0; i < cand.size(); ++i) {
-      const int b = bins[1] < bins[0] ? 1 : 0;
-      bin[i] = b;
-      bins[b] += subtree[static_cast<size_t>(cand[i])];
-      in_parts += subtree[static_cast<size_t>(cand[i])];
-    }
-    const double cost = std::max(bins[0], bins[1]) + (total - in_parts);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best_cand = cand;
-      best_bin = bin;
-    }
-    const int heavy = cand.front();
-    cand.erase(cand.begin());
-    for (int c : children[static_cast<size_t>(heavy)]) cand.push_back(c);
-  }
-  if (best_cand.empty()) return;
-  owner_.assign(static_cast<size_t>(n), 0);
-  std::vector<std::uint8_t> sn_owner(static_cast<size_t>(ns), 0);
-  for (size_t i = 0; i < best_cand.size(); ++i)
-    for (int sn = first[static_cast<size_t>(best_cand[i])]; sn <= best_cand[i]; ++sn) sn_owner[static_cast<size_t>(sn)] = static_cast<std::uint8_t>(1 + best_bin[i]);
-  for (int sn = 0; sn < ns; ++sn) {
-    const std::uint8_t o = sn_owner[static_cast<size_t>(sn)];
-    (o == 0 ? rest_super_ : part_super_[o - 1]).push_back(sn);
+  SupernodalSplit sp = split_supernodal_tree(f_);
+  if (sp.empty()) return;
+  owner_.assign(static_cast<size_t>(f_.n), 0);
+  for (int sn = 0; sn < f_.nsuper; ++sn)
     for (int c = f_.super[sn]; c < f_.super[sn + 1]; ++c) {
-      owner_[static_cast<size_t>(c)] = o;
-      if (o == 0) rest_cols_.push_back(c);
+      owner_[static_cast<size_t>(c)] = sp.owner[static_cast<size_t>(sn)];
+      if (sp.owner[static_cast<size_t>(sn)] == 0) rest_cols_.push_back(c);
     }
-  }
+  part_super_[0] = std::move(sp.group[0]);
+  part_super_[1] = std::move(sp.group[1]);
+  rest_super_ = std::move(sp.rest);
 }
 
 void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<double>* x, int cols) const {

@@ -1,6 +1,7 @@
 #include "wefm/core/sparse_cholesky.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <atomic>
 #include <chrono>
 #include <limits>
 #include <string>
@@ -10,6 +11,7 @@
 #include "wefm/core/error.hpp"
 #include "wefm/core/float_supernodal_solve.hpp"
 #include "wefm/core/huge_pages.hpp"
+#include "wefm/core/supernodal_refactor.hpp"
 #ifdef WEFM_HAVE_CHOLMOD
 #include <Eigen/CholmodSupport>
 #endif
@@ -71,8 +73,36 @@ template <class Matrix>
 class CholmodLLT : public Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> {
  public:
   cholmod_factor* factor() const { return this->m_cholmodFactor; }
+  // The factor's values were computed outside CHOLMOD (supernodal_refactor.hpp): solves may go on.
+  void mark_factorized() {
+    this->m_factorizationIsOk = true;
+    this->m_info = Eigen::Success;
+  }
 };
+
+// A complex supernodal LL^H factor with int indices and all its columns factorised, as a view.
+static bool supernodal_view(cholmod_factor* L, SupernodalView& v) {
+  if (!L || !L->is_super || !L->is_ll || L->xtype != CHOLMOD_COMPLEX || L->itype != CHOLMOD_INT || L->dtype != CHOLMOD_DOUBLE ||
+      L->xsize > static_cast<size_t>(std::numeric_limits<int>::max()) || L->minor != L->n || !L->x)
+    return false;
+  v.n = static_cast<int>(L->n);
+  v.nsuper = static_cast<int>(L->nsuper);
+  v.super = static_cast<const int*>(L->super);
+  v.pi = static_cast<const int*>(L->pi);
+  v.px = static_cast<const int*>(L->px);
+  v.s = static_cast<const int*>(L->s);
+  v.perm = static_cast<const int*>(L->Perm);
+  v.x = static_cast<double*>(L->x);
+  v.xsize = L->xsize;
+  return true;
+}
 #endif
+
+namespace {
+std::atomic<bool> g_own_refactor{true};
+}  // namespace
+
+void set_supernodal_refactor(bool on) { g_own_refactor.store(on); }
 
 // Eigen's LDLT with its factor's pattern in reach: the analysis sizes it (memory_limit_mb).
 template <class Matrix>
@@ -88,6 +118,8 @@ struct SparseCholeskyT<Scalar>::Impl {
   CholmodLLT<Matrix> cholmod;
 #endif
   FloatSupernodalFactor single;  // when keep_single_precision() took the factor over
+  SupernodalRefactor refactor;   // numeric factorisations without CHOLMOD's OpenMP (supernodal_refactor.hpp)
+  bool numeric_done = false;     // this analysis has been factorised once
   EigenLDLT<Matrix> ldlt;
 
   explicit Impl(bool cholmod_wanted) : use_cholmod(cholmod_wanted) {
@@ -126,6 +158,8 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
   const SerialOpenMP serial(true);
   impl_->single.clear();  // its values are CHOLMOD's, which the factorisation overwrites
   if (!same) {
+    impl_->refactor.clear();
+    impl_->numeric_done = false;
     const double t0 = now();
     n_ = static_cast<Index>(K.rows());
     pattern_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1);
@@ -151,8 +185,32 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
   Eigen::ComputationInfo info;
 #ifdef WEFM_HAVE_CHOLMOD
   if (impl_->use_cholmod) {
-    impl_->cholmod.factorize(K);
-    info = impl_->cholmod.info();
+    // The numeric factorisation without CHOLMOD's OpenMP regions (supernodal_refactor.hpp), on
+    // CHOLMOD's analysis; CHOLMOD's own where that cannot be used (switched off, or a factor of
+    // another kind).
+    bool own = false;
+    if constexpr (std::is_same_v<Scalar, Complex>) {
+      cholmod_factor* L = impl_->cholmod.factor();
+      if (!impl_->numeric_done && g_own_refactor.load() && L && L->is_super && L->xtype == CHOLMOD_PATTERN) {
+        // The symbolic factor's values laid out (and allocated) as CHOLMOD's own numeric
+        // factorisation would, so that the first factorisation is the own one too.
+        cholmod_change_factor(CHOLMOD_COMPLEX, 1, 1, 1, 1, L, &impl_->cholmod.cholmod());
+      }
+      SupernodalView v;
+      if (g_own_refactor.load() && supernodal_view(L, v)) {
+        if (!impl_->refactor.ready()) impl_->refactor.prepare(v, K);
+        own = impl_->refactor.ready();
+      }
+      if (own) {
+        info = impl_->refactor.factorize(K, threads_) ? Eigen::Success : Eigen::NumericalIssue;
+        if (info == Eigen::Success) impl_->cholmod.mark_factorized();
+      }
+    }
+    if (!own) {
+      impl_->cholmod.factorize(K);
+      info = impl_->cholmod.info();
+    }
+    impl_->numeric_done = info == Eigen::Success;
   } else
 #endif
   {
@@ -197,21 +255,9 @@ bool SparseCholeskyT<Scalar>::keep_single_precision() {
 #ifdef WEFM_HAVE_CHOLMOD
   if constexpr (std::is_same_v<Scalar, Complex>) {
     if (!impl_->use_cholmod || !impl_->single.empty()) return !impl_->single.empty();
-    cholmod_factor* L = impl_->cholmod.factor();
-    if (!L || !L->is_super || !L->is_ll || L->xtype != CHOLMOD_COMPLEX || L->itype != CHOLMOD_INT || L->dtype != CHOLMOD_DOUBLE ||
-        L->xsize < float_factor_min_entries() || L->xsize > static_cast<size_t>(std::numeric_limits<int>::max()) || L->minor != L->n)
-      return false;
-    const double t0 = now();
     SupernodalView v;
-    v.n = static_cast<int>(L->n);
-    v.nsuper = static_cast<int>(L->nsuper);
-    v.super = static_cast<const int*>(L->super);
-    v.pi = static_cast<const int*>(L->pi);
-    v.px = static_cast<const int*>(L->px);
-    v.s = static_cast<const int*>(L->s);
-    v.perm = static_cast<const int*>(L->Perm);
-    v.x = static_cast<double*>(L->x);
-    v.xsize = L->xsize;
+    if (!supernodal_view(impl_->cholmod.factor(), v) || v.xsize < float_factor_min_entries()) return false;
+    const double t0 = now();
     if (!impl_->single.convert_in_place(v)) return false;
     // The converted factor stays in CHOLMOD's value array, which CHOLMOD still takes for a numeric
     // factor: solve() never hands it to CHOLMOD while the float factor is in use, and the next

@@ -114,8 +114,9 @@ TEST_CASE("the single-precision factor solves like the double one to float preci
   // A zero residual gives zero.
   CHECK(single.solve(Eigen::MatrixXcd::Zero(K.rows(), 1)).isZero(0));
 
-  // Refactorised (the double values were freed): back to the double factor, bit for bit that of a
-  // fresh factorisation of the new values, until the copy is taken again.
+  // Refactorised (the double values were freed): back to a double factor of the new values (wefm's
+  // own refactorisation: that of a fresh CHOLMOD factorisation to rounding), until the copy is
+  // taken again.
   SpMatC K2 = K;
   for (Index i = 0; i < K2.rows(); ++i) K2.coeffRef(i, i) += 0.5;
   single.factorize(K2);
@@ -123,7 +124,7 @@ TEST_CASE("the single-precision factor solves like the double one to float preci
   SparseCholesky exact2;
   exact2.factorize(K2);
   const Eigen::MatrixXcd xd2 = exact2.solve(b);
-  CHECK(same_bits(single.solve(b), xd2));
+  CHECK((single.solve(b) - xd2).norm() / xd2.norm() < 1e-12);
   CHECK(single.counters().analyses == 1);
   CHECK(single.keep_single_precision());
   CHECK((single.solve(b) - xd2).norm() / xd2.norm() < 1e-4);

@@ -25,6 +25,11 @@ bool have_cholmod();
 // with the other core loaded, 2 threads took 2.2x the time of 1.
 void set_blas_threads(int threads);
 
+// Process-wide switch for tests and A/B timings: with true (the default) the numeric factorisations
+// of a complex CHOLMOD factor are wefm's own (supernodal_refactor.hpp) on CHOLMOD's analysis; with
+// false CHOLMOD does them.
+void set_supernodal_refactor(bool on);
+
 // Scalar is Complex: the Hermitian energy of the linear solves, and the complex-linear part of the
 // Gauss-Newton matrices that preconditions the continuation.
 template <class Scalar>
