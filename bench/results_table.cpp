@@ -130,7 +130,7 @@ std::string markdown_tables(const Json& results) {
   if (results.contains("glibc_tunables")) md += "Every case ran with `GLIBC_TUNABLES=" + results.value("glibc_tunables", "") + "`  \n";
   if (results.contains("threads"))
     md += "wefm ran with `threads` = " + std::to_string(results.value("threads", 1)) +
-          " (library cases and `wefm flatten --threads`; the factorisation is single-threaded either way)  \n";
+          " (library cases and `wefm flatten --threads`)  \n";
   md += "Date: " + results.value("date", "?") + "; wefm " + results.value("wefm_version", "?") + "; load average " +
         fmt(get(results, "load_start"), "%.2f") + " at start, " + fmt(get(results, "load_end"), "%.2f") + " at end  \n";
   md += "Command: `" + results.value("command", "?") + "`\n\n";

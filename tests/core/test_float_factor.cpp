@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include "magnetic_grid.hpp"
 #include "solve_helpers.hpp"
 #include "wefm/core/float_supernodal_solve.hpp"
 #include "wefm/core/sparse_cholesky.hpp"
@@ -15,36 +16,6 @@
 using namespace wefm;
 
 namespace {
-
-// A magnetic Laplacian of an n x n grid with diagonal neighbours (complex edge weights
-// w e^{i theta}) plus a small shift: Hermitian positive definite, with complex off-diagonal
-// entries, and with supernodes of many sizes (short columns at the leaves, wide separators at the
-// top), so the kernels' full vectors and tails are all exercised.
-SpMatC magnetic_grid(int n, double shift) {
-  std::vector<Eigen::Triplet<Complex>> t;
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> weight(0.5, 2.0), angle(-kPi, kPi);
-  auto id = [n](int i, int j) { return j * n + i; };
-  auto edge = [&](int a, int b) {
-    const double w = weight(rng);
-    const Complex e = w * std::polar(1.0, angle(rng));
-    t.emplace_back(a, a, w);
-    t.emplace_back(b, b, w);
-    t.emplace_back(a, b, -e);
-    t.emplace_back(b, a, -std::conj(e));
-  };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      if (i + 1 < n) edge(id(i, j), id(i + 1, j));
-      if (j + 1 < n) edge(id(i, j), id(i, j + 1));
-      if (i + 1 < n && j + 1 < n) edge(id(i, j), id(i + 1, j + 1));
-      t.emplace_back(id(i, j), id(i, j), shift);
-    }
-  SpMatC K(n * n, n * n);
-  K.setFromTriplets(t.begin(), t.end());
-  K.makeCompressed();
-  return K;
-}
 
 Eigen::MatrixXcd random_rhs(Index n, Index cols) {
   std::mt19937 rng(11);
@@ -80,7 +51,7 @@ TEST_CASE("the single-precision factor solves like the double one to float preci
     return;
   }
   const FloatFactorSettings every_factor(0);
-  const SpMatC K = magnetic_grid(70, 1e-2);
+  const SpMatC K = test::magnetic_grid(70, 1e-2);
   const Eigen::MatrixXcd b = random_rhs(K.rows(), 3);
   SparseCholesky exact;
   exact.factorize(K);
@@ -134,7 +105,7 @@ TEST_CASE("the single-precision solve split over the elimination tree: the same 
   if (!have_cholmod()) return;
   const FloatFactorSettings every_factor(0);
   // Wide enough that nested dissection leaves two big subtrees under a thin top separator.
-  const SpMatC K = magnetic_grid(90, 1e-2);
+  const SpMatC K = test::magnetic_grid(90, 1e-2);
   const Eigen::MatrixXcd b = random_rhs(K.rows(), 2);
   SparseCholesky exact;
   exact.factorize(K);
@@ -161,7 +132,7 @@ TEST_CASE("the single-precision solve split over the elimination tree: the same 
 
 TEST_CASE("the fallback keeps the double factor, and small factors stay in double by default") {
   if (!have_cholmod()) return;
-  const SpMatC K = magnetic_grid(30, 1e-2);
+  const SpMatC K = test::magnetic_grid(30, 1e-2);
   const Eigen::MatrixXcd b = random_rhs(K.rows(), 2);
   SparseCholesky exact;
   exact.factorize(K);

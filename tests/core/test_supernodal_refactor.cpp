@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include "magnetic_grid.hpp"
 #include "wefm/core/error.hpp"
 #include "wefm/core/sparse_cholesky.hpp"
 
@@ -13,35 +14,6 @@ using namespace wefm;
 
 namespace {
 
-// A Hermitian positive definite grid operator with complex off-diagonal entries (a magnetic
-// Laplacian with diagonal neighbours) plus `shift` on the diagonal: supernodes of many sizes.
-SpMatC grid_operator(int n, double shift, unsigned seed) {
-  std::vector<Eigen::Triplet<Complex>> t;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> weight(0.5, 2.0), angle(-3.14159, 3.14159);
-  auto id = [n](int i, int j) { return j * n + i; };
-  auto edge = [&](int a, int b) {
-    const double w = weight(rng);
-    const Complex e = w * std::polar(1.0, angle(rng));
-    t.emplace_back(a, a, w);
-    t.emplace_back(b, b, w);
-    t.emplace_back(a, b, -e);
-    t.emplace_back(b, a, -std::conj(e));
-  };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      if (i + 1 < n) edge(id(i, j), id(i + 1, j));
-      if (j + 1 < n) edge(id(i, j), id(i, j + 1));
-      if (i + 1 < n && j + 1 < n) edge(id(i, j), id(i + 1, j + 1));
-      t.emplace_back(id(i, j), id(i, j), shift);
-    }
-  SpMatC K(n * n, n * n);
-  K.setFromTriplets(t.begin(), t.end());
-  K.makeCompressed();
-  return K;
-}
-
-// The same pattern with other values (another seed): what a refactorisation receives.
 Eigen::MatrixXcd rhs(Index n) {
   std::mt19937 rng(3);
   std::normal_distribution<double> g;
@@ -58,7 +30,7 @@ bool same_bits(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& b) {
 
 TEST_CASE("the own supernodal factorisation gives CHOLMOD's factor to rounding, the same bits on any thread count") {
   if (!have_cholmod()) return;
-  const SpMatC K1 = grid_operator(80, 1e-2, 5), K2 = grid_operator(80, 1e-2, 9);
+  const SpMatC K1 = test::magnetic_grid(80, 1e-2, 5), K2 = test::magnetic_grid(80, 1e-2, 9);
   const Eigen::MatrixXcd b = rhs(K1.rows());
   // CHOLMOD's own factorisations (the switch off): the reference, and its refactorisation.
   set_supernodal_refactor(false);
@@ -97,7 +69,7 @@ TEST_CASE("the own supernodal factorisation gives CHOLMOD's factor to rounding, 
 
 TEST_CASE("the own refactorisation refuses a matrix that is not positive definite, and the next one analyses again") {
   if (!have_cholmod()) return;
-  const SpMatC K = grid_operator(40, 1e-2, 5);
+  const SpMatC K = test::magnetic_grid(40, 1e-2, 5);
   SparseCholesky c;
   c.factorize(K);
   SpMatC bad = K;

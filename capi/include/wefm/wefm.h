@@ -37,16 +37,17 @@
  *              be used from two threads at once, with one exception: wefm_face_cancel() may be called
  *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
  *              With wefm_options.threads <= 1 the library starts no threads of its own; with more,
- *              a solve runs its coefficients, assembly, continuation passes (linearisation,
+ *              a solve runs its coefficients, assembly, sparse factorisations (two groups of
+ *              subtrees of the elimination tree at once), continuation passes (linearisation,
  *              energy, products) and the preconditioner's triangular solves on that many
  *              short-lived threads (joined before it returns). Work is cut into pieces fixed by the
  *              face alone and every sum runs in a fixed order, so layouts are bit-identical for any
- *              thread count. The factorisation's BLAS and CHOLMOD's OpenMP loops always run on the
- *              solving thread: a solve sets the OpenBLAS pool under CHOLMOD to 1 thread,
- *              process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether), and sets the
- *              solving thread's OpenMP max-active-levels to 0 during each factorisation
- *              (restored after; other threads are not affected). On 2 cores, 2 threads take the
- *              whole `wefm flatten` of a 1M-triangle plate at s = 1 from 11.9 to 9.8 s.
+ *              thread count. The BLAS calls run on the calling threads: a solve sets the OpenBLAS
+ *              pool to 1 thread, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether),
+ *              and where CHOLMOD still factorises, its OpenMP loops run on the solving thread
+ *              alone (its OpenMP max-active-levels is 0 during the factorisation, restored after;
+ *              other threads are not affected). On 2 cores, 2 threads take the whole `wefm flatten`
+ *              of a 1M-triangle plate at s = 1 from 12.2 to 9.0 s.
  * Memory.      A solve advises its large arrays (4 MB and up) for transparent huge pages
  *              (madvise MADV_HUGEPAGE, while the system's free memory is ample): a 1M-triangle
  *              solve otherwise takes ~450k page faults, 3-5 s of system time on a virtual machine.
