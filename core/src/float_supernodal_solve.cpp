@@ -184,11 +184,7 @@ WEFM_AVX2 void backward_supernode(const SupernodalView& f, const float* values, 
   const int k1 = f.super[sn], nc = f.super[sn + 1] - k1, nr = f.pi[sn + 1] - f.pi[sn];
   const int* rows = f.s + f.pi[sn];
   const float* L = values + 2 * static_cast<size_t>(f.px[sn]);
-  std::memcpy(g, x + 2 * k1, sizeof(float) * 2 * static_cast<size_t>(nc));
-  for (int i = nc; i < nr; ++i) {
-    g[2 * i] = x[2 * rows[i]];
-    g[2 * i + 1] = x[2 * rows[i] + 1];
-  }
+  gather(x, rows, k1, nc, nr, g);
   for (int j = nc - 1; j >= 0; --j) {
     const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
     float re, im;

@@ -364,11 +364,11 @@ void GaussNewton::linearise_per_use(const VectorXc& z, double s, VectorXc& g, do
 double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, ScaleSums* sums) const {
   // rho = L / |d| (1 where either is 0), against its value at the linearisation (len_).
   double change = 0;
-  auto rho_ratio = [&](size_t h, double len) {
+  auto rho_change_of = [&](size_t h, double len) {
     const double L = c_.length[h];
     const double before = len_[h] > 0 && L > 0 ? L / len_[h] : 1.0;
     const double after = len > 0 && L > 0 ? L / len : 1.0;
-    change = std::max(change, std::abs(after / before - 1.0));
+    return std::abs(after / before - 1.0);
   };
   double e = 0;
   ScaleSums ps;
@@ -381,7 +381,8 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, S
     });
     if (rho_change)
       for (size_t h = 0; h < len_.size(); ++h)
-        rho_ratio(h, std::abs(z[tp_.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))]] - z[tp_.corner_use[h]]));
+        change = std::max(change, rho_change_of(h, std::abs(z[tp_.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))]] -
+                                                             z[tp_.corner_use[h]])));
   } else {
     // The rows' values only (no derivatives), in kBlocks fixed blocks of triangles whatever the
     // thread count, their sums added in block order.
@@ -404,12 +405,7 @@ double GaussNewton::energy_at(const VectorXc& z, double s, double* rho_change, S
             const double mag = c_.beta[h] * ratio_pow(c_.length[h] / std::max(len, 1e-12), s);
             const Complex r = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d - Complex(-mag * d.imag(), mag * d.real()));
             bs.e += std::norm(r);
-            if (rho_change) {
-              const double L = c_.length[h];
-              const double before = len_[h] > 0 && L > 0 ? L / len_[h] : 1.0;
-              const double after = len > 0 && L > 0 ? L / len : 1.0;
-              bs.change = std::max(bs.change, std::abs(after / before - 1.0));
-            }
+            if (rho_change) bs.change = std::max(bs.change, rho_change_of(h, len));
             if (sums) {
               const Complex p = sw_[h] * (zc[(j + 2) % 3] - zc[j] - c_.alpha[h] * d);
               const Complex q = sw_[h] * Complex(-mag * d.imag(), mag * d.real());

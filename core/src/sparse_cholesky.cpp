@@ -36,11 +36,11 @@ namespace {
 // untouched). Through dlsym, as for OpenBLAS: a no-op when no OpenMP runtime is loaded.
 class SerialOpenMP {
  public:
-  explicit SerialOpenMP(bool on) {
+  SerialOpenMP() {
     using Get = int (*)();
     static const Get get = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "omp_get_max_active_levels"));
     static const SetLevels set = reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
-    if (!on || !get || !set) return;
+    if (!get || !set) return;
     set_ = set;
     old_ = get();
     set_(0);
@@ -155,7 +155,7 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
                     pattern_outer_.size() == static_cast<size_t>(K.outerSize() + 1) &&
                     std::equal(pattern_outer_.begin(), pattern_outer_.end(), K.outerIndexPtr()) &&
                     std::equal(pattern_inner_.begin(), pattern_inner_.end(), K.innerIndexPtr());
-  const SerialOpenMP serial(true);
+  const SerialOpenMP serial;
   impl_->single.clear();  // its values are CHOLMOD's, which the factorisation overwrites
   if (!same) {
     impl_->refactor.clear();
