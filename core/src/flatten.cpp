@@ -26,6 +26,9 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+// Continuation steps below the target s end at this multiple of rho_tolerance.
+constexpr double kWayUpTolerance = 10.0;
+
 class Stage {
  public:
   Stage(const FlattenInput& in) : in_(in) {}
@@ -359,8 +362,16 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       for (double sv = 0; sv < s_top - 1e-12;) schedule.push_back(sv = std::min(s_top, sv + opt.s_step));
     }
     double s_cur = 0;
-    for (const double s_next : schedule) {
-      const GaussNewtonReport gr = gn.run(z, s_next, opt.rho_tolerance, opt.max_rho_iterations, gauge.vector && s_next >= 1.0, [&](int it) {
+    for (size_t k = 0; k < schedule.size(); ++k) {
+      const double s_next = schedule[k];
+      // A step on the way up only places the next one's start: it stops at kWayUpTolerance times
+      // the tolerance. Measured at s = 2 on the real sample and the synthetic faces: the same scores
+      // to 1e-4 (bottle .99330 -> .99338, helix .928282 -> .928296), Gauss-Newton iterations fewer
+      // on 9 of 19 faces (revolved sphere 53 -> 49, MAT 21 -> 18), the 1M disk 7 -> 6. A single
+      // predictor iteration instead cost the bottle and the sphere with a small hole (SOLVER.md).
+      const bool way_up = s_top == opt.s && k + 1 < schedule.size();
+      const double tol = way_up ? kWayUpTolerance * opt.rho_tolerance : opt.rho_tolerance;
+      const GaussNewtonReport gr = gn.run(z, s_next, tol, opt.max_rho_iterations, gauge.vector && s_next >= 1.0, [&](int it) {
         stage.check(0.4 + 0.5 * std::min(1.0, (s_cur + (s_next - s_cur) * it / opt.max_rho_iterations) / s_top), "continuation");
       });
       StepInfo step;

@@ -203,3 +203,32 @@ TEST_CASE("the boundary term lowers the turning-angle error along the loops of a
       }
     }
 }
+
+TEST_CASE("a step below the target s ends at 10x rho_tolerance and leaves the target's minimum as it was") {
+  // The step to s = 1 only places the start of the step to 2: loosening it must not move the
+  // layout the continuation ends in. The reference converges the way up 100x tighter.
+  const TriMesh faces[] = {test::hemisphere(), test::saddle()};
+  int ended_loose = 0;  // way-up steps that stopped above rho_tolerance: the looser test is in use
+  for (const TriMesh& m : faces) {
+    Options o = test::with_s(2.0);
+    const auto r = test::solve(m, o);
+    Options tight = o;
+    tight.rho_tolerance = o.rho_tolerance / 100;
+    const auto ref = test::solve(m, tight);
+    REQUIRE(r.steps.size() == 2);
+    REQUIRE(ref.steps.size() == 2);
+    MESSAGE("s = 1 step: " << r.steps[0].iterations << " iterations, rho change " << r.steps[0].rho_change << " (tight: "
+                           << ref.steps[0].iterations << ", " << ref.steps[0].rho_change << "); score " << r.report.quality.score
+                           << " against " << ref.report.quality.score);
+    CHECK(r.steps[0].s == 1.0);
+    CHECK(r.steps[0].converged);
+    CHECK(r.steps[0].rho_change < 10 * o.rho_tolerance);
+    CHECK(r.steps[1].converged);
+    CHECK(r.steps[0].iterations <= ref.steps[0].iterations);
+    CHECK(r.report.quality.flips == 0);
+    CHECK(r.report.quality.score == doctest::Approx(ref.report.quality.score).epsilon(1e-4));
+    CHECK(r.report.quality.area_mean == doctest::Approx(ref.report.quality.area_mean).epsilon(1e-2));
+    if (r.steps[0].rho_change >= o.rho_tolerance) ++ended_loose;
+  }
+  CHECK(ended_loose > 0);
+}

@@ -221,7 +221,7 @@ typedef struct wefm_options {
   int solver;                /**< wefm_solver. Default WEFM_SOLVER_AUTO */
   int default_edge_mode;     /**< wefm_edge_mode for repeated edges not set per edge. Default AUTO */
   double s_step;             /**< largest continuation step in s (0.001 <= s_step <= 2). Default 1 */
-  double rho_tolerance;      /**< a continuation step ends when max relative rho change < this. Default 1e-3 */
+  double rho_tolerance;      /**< the last continuation step ends when max relative rho change < this (steps below the target s at 10x this). Default 1e-3 */
   int max_rho_iterations;    /**< Gauss-Newton iterations per s step; reaching it reports non-convergence. Default 50 */
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
   int max_rollout_sweeps;    /**< Default 10000 */

@@ -24,7 +24,7 @@ struct Options {
   Backend backend = Backend::Auto;
   EdgeMode default_edge_mode = EdgeMode::Auto;
   double s_step = 1.0;  // measured: Gauss-Newton gives the same layouts on the real sample as 0.25, in fewer factorisations
-  double rho_tolerance = 1e-3;
+  double rho_tolerance = 1e-3;  // the last continuation step's; steps below the target s end at 10x it
   int max_rho_iterations = 50;  // Gauss-Newton iterations per step; a sphere with a small hole needs 30 at s = 1
   double rollout_tolerance = 1e-10;
   int max_rollout_sweeps = 10000;
