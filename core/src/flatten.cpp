@@ -176,7 +176,13 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   const double other_mb = 0.75e-3 * static_cast<double>(mesh.triangles.size());
   kkt.factor().set_memory_limit(opt.memory_limit_mb, other_mb);
   stage.check(0.1, "factorise");
-  kkt.set_matrix(K, split.first, split.second);
+  {
+    // Points for the ordering, should minimum degree's fill be poor (nested_dissection.hpp).
+    std::vector<Vec3> at(static_cast<size_t>(tp.use_count));
+    for (Index u = 0; u < tp.use_count; ++u) at[static_cast<size_t>(u)] = mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])];
+    kkt.set_ordering_points(&at);
+    kkt.set_matrix(K, split.first, split.second);
+  }
 
   LinearRow vec, pin;
   pin.terms = {{seg.first, 1.0}};

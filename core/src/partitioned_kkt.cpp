@@ -56,6 +56,13 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1) {
   Kpp_.resizeNonZeros(static_cast<Index>(nz));
   K_PX_.resize(np, 2);
   K_PX_.setFromTriplets(px.begin(), px.end());
+  if (points_ && points_->size() == static_cast<size_t>(n_)) {
+    std::vector<Vec3> pp(static_cast<size_t>(np));
+    for (Index u = 0; u < n_; ++u)
+      if (p_of_[static_cast<size_t>(u)] >= 0) pp[static_cast<size_t>(p_of_[static_cast<size_t>(u)])] = (*points_)[static_cast<size_t>(u)];
+    chol_.set_ordering_points(std::move(pp));
+  }
+  points_ = nullptr;
   chol_.factorize(Kpp_);
   kscale_ = K.diagonal().cwiseAbs().maxCoeff();
   cache_valid_ = false;

@@ -1,4 +1,5 @@
 #include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/nested_dissection.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <atomic>
@@ -78,7 +79,45 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> {
     this->m_factorizationIsOk = true;
     this->m_info = Eigen::Success;
   }
+  // Eigen's analyzePattern with CHOLMOD's methods as the caller set them and an optional order.
+  void analyze_with(const Matrix& K, int* perm) {
+    if (this->m_cholmodFactor) cholmod_free_factor(&this->m_cholmodFactor, &this->cholmod());
+    cholmod_sparse A = Eigen::viewAsCholmod(K.template selfadjointView<Eigen::Lower>());
+    this->m_cholmodFactor = cholmod_analyze_p(&A, perm, nullptr, 0, &this->cholmod());
+    this->m_isInitialized = true;
+    this->m_info = this->m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
+    this->m_analysisIsOk = this->m_cholmodFactor != nullptr;
+    this->m_factorizationIsOk = false;
+  }
 };
+
+// The ordering: AMD; when its fill is poor by CHOLMOD's test (the one after which CHOLMOD's default
+// strategy runs METIS), a geometric nested dissection on `points`; when that is poor too, or there
+// are no points, CHOLMOD's default (AMD, then METIS). The AMD case gives CHOLMOD's default result.
+template <class LLT, class Matrix>
+static void analyze_ordered(LLT& llt, const Matrix& K, const std::vector<Vec3>& points) {
+  cholmod_common& c = llt.cholmod();
+  const double anz = 0.5 * static_cast<double>(K.nonZeros() + K.rows());
+  auto poor = [&] { return c.lnz >= 5 * anz && c.fl >= 500 * c.lnz; };
+  if (points.size() != static_cast<size_t>(K.rows())) {
+    llt.analyzePattern(K);
+    return;
+  }
+  const int saved_nmethods = c.nmethods, saved_ordering = c.method[0].ordering;
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_AMD;
+  llt.analyze_with(K, nullptr);
+  bool done = llt.factor() && !poor();
+  if (!done) {
+    std::vector<int> perm = geometric_nested_dissection(K.outerIndexPtr(), K.innerIndexPtr(), points);
+    c.method[0].ordering = CHOLMOD_GIVEN;
+    llt.analyze_with(K, perm.data());
+    done = llt.factor() && !poor();
+  }
+  c.nmethods = saved_nmethods;
+  c.method[0].ordering = saved_ordering;
+  if (!done) llt.analyzePattern(K);
+}
 
 // A complex supernodal LL^H factor with int indices and all its columns factorised, as a view.
 static bool supernodal_view(cholmod_factor* L, SupernodalView& v) {
@@ -127,15 +166,13 @@ struct SparseCholeskyT<Scalar>::Impl {
     // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
     cholmod.cholmod().print = 0;
     if (use_cholmod) use_huge_pages_in_suitesparse();
-    // Ordering: CHOLMOD's default (AMD, then METIS when AMD's fill looks high). On the 1M disk
-    // AMD's fill is high in wefm's use numbering (44M factor entries, 29 GFlop) and METIS is
-    // taken (25M, 7.4 GFlop; 3.2-3.9 s of analysis on a 2-core EPYC, 2.0 s on a Xeon, against
-    // 0.36 s for AMD, repaid by every refactorisation); on the 1M plate AMD's fill passes and AMD
-    // is kept (16.5M, 3.7 GFlop, 0.3 s). AMD's fill depends on the starting numbering (the same
-    // disk graph: 25.8M in the OBJ's ring order, 36.5M shuffled, 38.4M in Morton order), so no
-    // cheap renumbering reaches METIS's fill; nor does METIS on a graph coarsened by matching
-    // (1 level: 31.6M, 2 levels: 42.7M), and METIS's own options save at most 13% of its time
-    // (niter 1). Measured on 2 Dec 2026 (docs/PERFORMANCE.md, "Measured and not kept").
+    // Ordering: AMD; where its fill is poor (CHOLMOD's test) a geometric nested dissection when
+    // the caller gave points (set_ordering_points); METIS (CHOLMOD's default fallback) when that is
+    // poor too. On the 1M disk the boundary term's couplings along the loop make AMD's fill poor
+    // (44M factor entries, 29 GFlop; 26M without the boundary term); METIS took 2.7 s of analysis
+    // for 25.2M entries (7.4 GFlop), the nested dissection takes 0.2 s for 27M. On the 1M plate
+    // AMD's fill passes (16.5M, 3.7 GFlop, 0.3 s) and is kept. Cheap renumberings before AMD, METIS
+    // on a coarsened graph and METIS's own options were measured and dropped (docs/PERFORMANCE.md).
 #endif
   }
 };
@@ -165,8 +202,10 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
     pattern_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1);
     pattern_inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
 #ifdef WEFM_HAVE_CHOLMOD
-    if (impl_->use_cholmod) impl_->cholmod.analyzePattern(K);
-    else
+    if (impl_->use_cholmod) {
+      analyze_ordered(impl_->cholmod, K, points_);
+      std::vector<Vec3>().swap(points_);
+    } else
 #endif
       impl_->ldlt.analyzePattern(K);
     ++counters_.analyses;

@@ -72,6 +72,11 @@ class SparseCholeskyT {
     limit_mb_ = limit_mb;
     other_mb_ = other_mb;
   }
+  // A point per unknown of the next matrix analysed (then dropped). When minimum degree's fill is
+  // poor by CHOLMOD's own test, a geometric nested dissection on them (nested_dissection.hpp) is
+  // tried before METIS, and kept unless it is poor too. CHOLMOD builds only; empty: CHOLMOD's
+  // default (AMD, then METIS when poor).
+  void set_ordering_points(std::vector<Vec3> xyz) { points_ = std::move(xyz); }
   // Entries of the factor found by the last analysis (CHOLMOD's L->xsize; Eigen: L and D).
   std::size_t factor_entries() const;
   Index size() const { return n_; }
@@ -85,6 +90,7 @@ class SparseCholeskyT {
   int threads_ = 1;
   double limit_mb_ = 0, other_mb_ = 0;
   std::vector<int> pattern_outer_, pattern_inner_;
+  std::vector<Vec3> points_;
 };
 
 using SparseCholesky = SparseCholeskyT<Complex>;
