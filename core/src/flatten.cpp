@@ -180,8 +180,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     // Points for the ordering, should minimum degree's fill be poor (nested_dissection.hpp).
     std::vector<Vec3> at(static_cast<size_t>(tp.use_count));
     for (Index u = 0; u < tp.use_count; ++u) at[static_cast<size_t>(u)] = mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])];
-    kkt.set_ordering_points(&at);
-    kkt.set_matrix(K, split.first, split.second);
+    kkt.set_matrix(K, split.first, split.second, &at);
   }
 
   LinearRow vec, pin;

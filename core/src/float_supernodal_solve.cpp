@@ -200,7 +200,7 @@ WEFM_AVX2 void backward_supernode(const SupernodalView& f, const float* values, 
 }  // namespace
 #endif  // WEFM_FLOAT_FACTOR_X86
 
-bool FloatSupernodalFactor::convert_in_place(const SupernodalView& f) {
+bool FloatSupernodalFactor::convert_in_place(const SupernodalView& f, const SupernodalSplit* split) {
   clear();
   if (!float_factor_kernels_available() || f.n <= 0 || f.nsuper <= 0 || !f.x) return false;
   // Each supernode's first rows must be its own columns (CHOLMOD's layout): the solves rely on it.
@@ -247,7 +247,7 @@ bool FloatSupernodalFactor::convert_in_place(const SupernodalView& f) {
   f_ = f;
   values_ = reinterpret_cast<const float*>(f.x);
   max_rows_ = max_rows;
-  plan_parts();
+  plan_parts(split ? *split : split_supernodal_tree(f_));
   return true;
 }
 
@@ -274,12 +274,11 @@ void FloatSupernodalFactor::clear() {
   max_rows_ = 0;
 }
 
-void FloatSupernodalFactor::plan_parts() {
+void FloatSupernodalFactor::plan_parts(const SupernodalSplit& sp) {
   owner_.clear();
   for (auto& p : part_super_) p.clear();
   rest_super_.clear();
   rest_cols_.clear();
-  SupernodalSplit sp = split_supernodal_tree(f_);
   if (sp.empty()) return;
   owner_.assign(static_cast<size_t>(f_.n), 0);
   for (int sn = 0; sn < f_.nsuper; ++sn)
@@ -287,9 +286,9 @@ void FloatSupernodalFactor::plan_parts() {
       owner_[static_cast<size_t>(c)] = sp.owner[static_cast<size_t>(sn)];
       if (sp.owner[static_cast<size_t>(sn)] == 0) rest_cols_.push_back(c);
     }
-  part_super_[0] = std::move(sp.group[0]);
-  part_super_[1] = std::move(sp.group[1]);
-  rest_super_ = std::move(sp.rest);
+  part_super_[0] = sp.group[0];
+  part_super_[1] = sp.group[1];
+  rest_super_ = sp.rest;
 }
 
 void FloatSupernodalFactor::solve(const std::complex<double>* b, std::complex<double>* x, int cols) const {

@@ -521,18 +521,22 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
     refactor();
     fresh = true;
   }
+  // The unknowns the constraint rows touch (the gauge's two uses, usually), and their real columns
+  // that are not zero: C y reads only those.
+  std::vector<Index> touched, c_cols;
+  for (Index k = 0; k < nr / 2; ++k)
+    for (Index j = 0; j < C.rows(); ++j)
+      if (C(j, 2 * k) != 0.0 || C(j, 2 * k + 1) != 0.0) {
+        touched.push_back(k);
+        break;
+      }
+  for (Index k : touched)
+    for (Index col : {2 * k, 2 * k + 1})
+      if ((C.col(col).array() != 0.0).any()) c_cols.push_back(col);
   Eigen::MatrixXd W;
   Eigen::FullPivLU<Eigen::MatrixXd> Sc;
   auto project = [&] {
     if (C.rows() == 0) return;
-    // The unknowns the constraint rows touch (the gauge's two uses, usually).
-    std::vector<Index> touched;
-    for (Index k = 0; k < nr / 2; ++k)
-      for (Index j = 0; j < C.rows(); ++j)
-        if (C(j, 2 * k) != 0.0 || C(j, 2 * k + 1) != 0.0) {
-          touched.push_back(k);
-          break;
-        }
     if (touched.size() > kMaxCachedUnits) {
       this->precondition(C.transpose(), W);
     } else {
@@ -600,14 +604,6 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
     return sum;
   };
   auto elementwise = [&](const std::function<void(Index, Index)>& body) { parallel_for(threads_, nr, body); };
-  // C's nonzero columns (the gauge's uses and the caller rows' unknowns): C y reads only them.
-  std::vector<Index> c_cols;
-  for (Index k = 0; k < nr; ++k)
-    for (Index j = 0; j < C.rows(); ++j)
-      if (C(j, k) != 0.0) {
-        c_cols.push_back(k);
-        break;
-      }
   auto precondition = [&](const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
     this->precondition(rr, zr_m);
     y.resize(nr);

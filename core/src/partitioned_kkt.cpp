@@ -10,7 +10,7 @@
 
 namespace wefm {
 
-void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1) {
+void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::vector<Vec3>* points) {
   n_ = static_cast<Index>(K.rows());
   if (x0 == x1 || x0 < 0 || x1 < 0 || x0 >= n_ || x1 >= n_) fail(Errc::internal, "partition uses out of range");
   if (!K.isCompressed()) fail(Errc::internal, "the energy matrix is not compressed");
@@ -56,13 +56,12 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1) {
   Kpp_.resizeNonZeros(static_cast<Index>(nz));
   K_PX_.resize(np, 2);
   K_PX_.setFromTriplets(px.begin(), px.end());
-  if (points_ && points_->size() == static_cast<size_t>(n_)) {
+  if (points && points->size() == static_cast<size_t>(n_)) {
     std::vector<Vec3> pp(static_cast<size_t>(np));
     for (Index u = 0; u < n_; ++u)
-      if (p_of_[static_cast<size_t>(u)] >= 0) pp[static_cast<size_t>(p_of_[static_cast<size_t>(u)])] = (*points_)[static_cast<size_t>(u)];
+      if (p_of_[static_cast<size_t>(u)] >= 0) pp[static_cast<size_t>(p_of_[static_cast<size_t>(u)])] = (*points)[static_cast<size_t>(u)];
     chol_.set_ordering_points(std::move(pp));
   }
-  points_ = nullptr;
   chol_.factorize(Kpp_);
   kscale_ = K.diagonal().cwiseAbs().maxCoeff();
   cache_valid_ = false;

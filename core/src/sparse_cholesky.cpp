@@ -297,7 +297,7 @@ bool SparseCholeskyT<Scalar>::keep_single_precision() {
     SupernodalView v;
     if (!supernodal_view(impl_->cholmod.factor(), v) || v.xsize < float_factor_min_entries()) return false;
     const double t0 = now();
-    if (!impl_->single.convert_in_place(v)) return false;
+    if (!impl_->single.convert_in_place(v, impl_->refactor.ready() ? &impl_->refactor.split() : nullptr)) return false;
     // The converted factor stays in CHOLMOD's value array, which CHOLMOD still takes for a numeric
     // factor: solve() never hands it to CHOLMOD while the float factor is in use, and the next
     // factorize overwrites every entry (it clears each supernode before assembling it).

@@ -60,6 +60,8 @@ struct SupernodalView {
   std::size_t xsize = 0;       // complex entries in x
 };
 
+struct SupernodalSplit;  // supernodal_split.hpp
+
 class FloatSupernodalFactor {
  public:
   // Converts the values to single precision in place: the float factor occupies the first half of
@@ -69,7 +71,9 @@ class FloatSupernodalFactor {
   // brings them back. Returns false and leaves x untouched when the kernels are not available or a
   // value would not survive the conversion (a diagonal entry outside [2^-60, 2^60], any entry
   // above 2^60, or not finite): the caller then keeps its double factor.
-  bool convert_in_place(const SupernodalView& f);
+  // `split`: the tree's split when the caller has it for this analysis (SupernodalRefactor keeps
+  // one); computed here otherwise.
+  bool convert_in_place(const SupernodalView& f, const SupernodalSplit* split = nullptr);
   // Gives the pages of x's second half back to the system (Linux: madvise MADV_DONTNEED; they read
   // as zeros until written again, which a refactorisation does).
   void release_unused() const;
@@ -87,7 +91,7 @@ class FloatSupernodalFactor {
   std::size_t shared_columns() const { return rest_cols_.size(); }
 
  private:
-  void plan_parts();
+  void plan_parts(const SupernodalSplit& sp);
   SupernodalView f_;
   const float* values_ = nullptr;  // (re, im) interleaved over f_.x's first half
   int max_rows_ = 0;  // rows of the tallest supernode: the size of the gather buffer

@@ -24,11 +24,9 @@ class PartitionedKKT {
   explicit PartitionedKKT(Backend backend) : chol_(backend) {}
 
   // Numeric factorisation of K_PP (the symbolic analysis is reused while the pattern is unchanged).
-  void set_matrix(const SpMatC& K, Index x0, Index x1);
-
-  // A 3D point per unknown of K, for the ordering of the next analysis
-  // (SparseCholesky::set_ordering_points, passed on in K_PP's numbering). Not kept.
-  void set_ordering_points(const std::vector<Vec3>* xyz) { points_ = xyz; }
+  // `points`: a 3D point per unknown of K, for the ordering should K_PP be analysed
+  // (SparseCholesky::set_ordering_points, passed on in K_PP's numbering).
+  void set_matrix(const SpMatC& K, Index x0, Index x1, const std::vector<Vec3>* points = nullptr);
 
   // min z^H K z  s.t.  rows, and sum_i eta_i z_i = 0 when eta is given. Prefer fixing translation
   // with a pin and shifting afterwards: the dense eta row makes the reduced system ill-conditioned
@@ -72,7 +70,6 @@ class PartitionedKKT {
   VectorXc apply_k(const VectorXc& z) const;
 
   SparseCholesky chol_;
-  const std::vector<Vec3>* points_ = nullptr;
   Index n_ = 0, x_[2] = {-1, -1};
   std::vector<Index> p_of_;     // use -> index in P, or -1 for x0/x1
   Eigen::SparseMatrix<Complex> K_PX_;  // |P| x 2

@@ -27,6 +27,9 @@ class SupernodalRefactor {
   // falls outside the factor's pattern (then factorize must not be used).
   bool prepare(const SupernodalView& f, const SpMatC& A);
   bool ready() const { return ready_; }
+  // The elimination tree's split of the prepared factor (empty when serial): the float factor of
+  // the same analysis solves on it too.
+  const SupernodalSplit& split() const { return split_; }
   void clear();
   // L L^H = P A P^T into f.x (A with the pattern given to prepare). Returns false when A is not
   // positive definite (f.x then holds garbage: the caller fails the factorisation).
