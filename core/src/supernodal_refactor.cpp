@@ -4,20 +4,8 @@
 #include <atomic>
 #include <cstring>
 
+#include "wefm/core/blas.hpp"
 #include "wefm/core/parallel.hpp"
-
-#ifdef WEFM_HAVE_CHOLMOD
-extern "C" {
-// Fortran BLAS and LAPACK (OpenBLAS provides both), called as CHOLMOD calls them.
-void zherk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const void* a, const int* lda,
-            const double* beta, void* c, const int* ldc);
-void zgemm_(const char* ta, const char* tb, const int* m, const int* n, const int* k, const void* alpha, const void* a, const int* lda,
-            const void* b, const int* ldb, const void* beta, void* c, const int* ldc);
-void ztrsm_(const char* side, const char* uplo, const char* ta, const char* diag, const int* m, const int* n, const void* alpha,
-            const void* a, const int* lda, void* b, const int* ldb);
-void zpotrf_(const char* uplo, const int* n, void* a, const int* lda, int* info);
-}
-#endif
 
 namespace wefm {
 

@@ -46,6 +46,12 @@ class SparseCholeskyT {
   // Throws Error(not_positive_definite) when the matrix is not positive definite.
   void factorize(const Matrix& K);
   Dense solve(const Dense& rhs);
+  // Entries (rows, cols) of the factorised matrix's inverse, by forward solves restricted to the
+  // elimination tree (supernodal_inverse.hpp): for many unit right-hand sides where only a few
+  // entries of each solution are wanted. False when the factor is not CHOLMOD's double supernodal
+  // one, or the restriction would hold more than max_entries numbers: the caller then solves.
+  // Counts one solve per column of the result.
+  bool inverse_entries(const std::vector<Index>& rows, const std::vector<Index>& cols, std::size_t max_entries, Dense& out);
   // Frees the factor (counters stay); the next factorize analyses again.
   void release();
   // For a factor that only preconditions from now on: after factorize (and any solve that needs
