@@ -27,10 +27,10 @@ namespace {
 
 const char* kUsage =
     "usage: wefm-bench [options]                 run the benchmark (each case in a fresh process)\n"
-    "       wefm-bench --generate SHAPE SIZE -o FILE.obj   write a benchmark face\n"
+    "       wefm-bench --generate SHAPE SIZE -o FILE.obj   write a benchmark face (and FILE.seam for the tube)\n"
     "       wefm-bench --table-from A.json[,B.json...] [--json FILE] [--markdown FILE]   merge earlier results\n"
     "\n"
-    "  --shapes LIST     disk,plate (default both)\n"
+    "  --shapes LIST     disk,plate,tube (default disk,plate; tube has a seam, given to wefm)\n"
     "  --sizes LIST      triangle counts, e.g. 10k,100k,1M (default 10k,100k,1M)\n"
     "  --4m              add the 4M size\n"
     "  --s LIST          roll-out exponents (default 0,1,2)\n"
@@ -60,7 +60,7 @@ std::vector<std::string> split(const std::string& s) {
 
 Shape shape_arg(const std::string& s) {
   Shape shape;
-  if (!parse_shape(s, shape)) usage_error("unknown shape '" + s + "' (disk, plate)");
+  if (!parse_shape(s, shape)) usage_error("unknown shape '" + s + "' (disk, plate, tube)");
   return shape;
 }
 
@@ -144,18 +144,22 @@ Json child_case(const std::vector<std::string>& argv, const Settings& st, Json h
 Json cli_case(const Settings& st, Shape shape, int64_t size, double s) {
   Json j{{"shape", shape_name(shape)}, {"size", size_label(size)}, {"s", s}};
   const std::string base = st.work + "/wefm-bench-" + std::to_string(getpid()) + "-" + shape_name(shape) + "_" + size_label(size);
+  bool seams = false;
   {
     const Face f = generate(shape, size);
     j["triangles"] = f.triangles();
-    if (!write_obj(base + ".obj", f)) {
+    if (!write_obj(base + ".obj", f) || (!f.seam.empty() && !write_seam(base + ".seam", f))) {
       j["status"] = "cannot write " + base + ".obj";
       return j;
     }
+    seams = !f.seam.empty();
   }
   char sbuf[32];
   std::snprintf(sbuf, sizeof sbuf, "%g", s);
-  const ChildResult r = run_child({st.cli, "flatten", base + ".obj", "-o", base + "_uv.obj", "--s", sbuf, "--quiet", "--report", base + ".json",
-                                   "--threads", std::to_string(st.threads)}, st.timeout);
+  std::vector<std::string> argv{st.cli, "flatten", base + ".obj", "-o", base + "_uv.obj", "--s", sbuf, "--quiet", "--report", base + ".json",
+                                "--threads", std::to_string(st.threads)};
+  if (seams) argv.insert(argv.end(), {"--seams", base + ".seam"});
+  const ChildResult r = run_child(argv, st.timeout);
   j["wall"] = r.wall;
   j["cpu_user"] = r.user;
   j["cpu_sys"] = r.sys;
@@ -169,7 +173,7 @@ Json cli_case(const Settings& st, Shape shape, int64_t size, double s) {
     j["report_timings"] = rep["timings"];
   } catch (const std::exception&) {
   }
-  for (const char* ext : {".obj", "_uv.obj", ".json"}) std::remove((base + ext).c_str());
+  for (const char* ext : {".obj", ".seam", "_uv.obj", ".json"}) std::remove((base + ext).c_str());
   return j;
 }
 
@@ -298,6 +302,16 @@ int main(int argc, char** argv) {
     }
     std::fprintf(stderr, "%s: %lld vertices, %lld triangles\n", generate_out.c_str(), static_cast<long long>(f.vertices()),
                  static_cast<long long>(f.triangles()));
+    if (!f.seam.empty()) {
+      // FILE.seam next to FILE.obj, for `wefm flatten FILE.obj --seams FILE.seam`.
+      const size_t dot = generate_out.rfind('.');
+      const std::string seam = (dot == std::string::npos || generate_out.find('/', dot) != std::string::npos ? generate_out : generate_out.substr(0, dot)) + ".seam";
+      if (!write_seam(seam, f)) {
+        std::fprintf(stderr, "wefm-bench: cannot write %s: %s\n", seam.c_str(), std::strerror(errno));
+        return 1;
+      }
+      std::fprintf(stderr, "%s: %lld facet edges of the seam\n", seam.c_str(), static_cast<long long>(f.seam.size() / 2));
+    }
     return 0;
   }
   if (!table_from.empty()) {

@@ -82,6 +82,7 @@ Json run_wefm_case(Shape shape, int64_t size, double s, int threads) {
   const double cpu0 = cpu_seconds();
   t = now_seconds();
   wefm_status st = wefm_face_set_mesh(face, f.vertices(), f.xyz.data(), f.triangles(), f.tri.data());
+  if (st == WEFM_OK && !f.seam.empty()) st = wefm_face_add_seams(face, static_cast<int64_t>(f.seam.size() / 2), f.seam.data());
   const double t_set = now_seconds();
   if (st == WEFM_OK) st = wefm_face_set_options(face, &o);
   if (st == WEFM_OK) st = wefm_face_build(face);

@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "wefm-bench-cgal: bad shape or size\n");
     return 2;
   }
-  const wefm_bench::Face f = wefm_bench::generate(shape, size);
+  // Cut along its seam, if it has one: LSCM needs a topological disk.
+  const wefm_bench::Face f = wefm_bench::generate(shape, size, true);
   nlohmann::ordered_json j;
   j["kind"] = "cgal";
   j["shape"] = wefm_bench::shape_name(shape);

@@ -112,17 +112,59 @@ Face holed_plate(int64_t target) {
   return f;
 }
 
-}  // namespace
-
-Face generate(Shape shape, int64_t target_triangles) {
-  return shape == Shape::BumpyDisk ? bumpy_disk(target_triangles) : holed_plate(target_triangles);
+// A tube 3 long around the z axis, nt vertices around and nz + 1 rows (nt = 2 nz), its radius
+// bulging along z and rippled around it, so no layout is isometric: a cylindrical CAD face meshed
+// finely, with the seam a CAD kernel puts along one generator (angle 0). Cut, the column at angle
+// 0 is repeated at 2 pi and the face is a topological disk.
+Face seamed_tube(int64_t target, bool cut) {
+  const int64_t nz = std::max<int64_t>(4, std::llround(std::sqrt(static_cast<double>(target) / 4.0)));
+  const int64_t nt = 2 * nz, cols = cut ? nt + 1 : nt;
+  Face f;
+  f.xyz.reserve(static_cast<size_t>(3 * cols * (nz + 1)));
+  for (int64_t j = 0; j <= nz; ++j)
+    for (int64_t i = 0; i < cols; ++i) {
+      const double t = 2 * kPi * static_cast<double>(i % nt) / static_cast<double>(nt);
+      const double z = 3.0 * static_cast<double>(j) / static_cast<double>(nz);
+      const double r = 1.0 + 0.25 * std::sin(1.3 * z) + 0.05 * std::cos(3 * t) * std::sin(2 * z);
+      f.xyz.insert(f.xyz.end(), {r * std::cos(t), r * std::sin(t), z});
+    }
+  auto id = [&](int64_t i, int64_t j) { return static_cast<int32_t>(j * cols + (cut ? i : i % nt)); };
+  f.tri.reserve(static_cast<size_t>(6 * nt * nz));
+  for (int64_t j = 0; j < nz; ++j)
+    for (int64_t i = 0; i < nt; ++i) {
+      const int32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      f.tri.insert(f.tri.end(), {a, b, c});
+      f.tri.insert(f.tri.end(), {a, c, d});
+    }
+  if (!cut)
+    for (int64_t j = 0; j < nz; ++j) f.seam.insert(f.seam.end(), {id(0, j), id(0, j + 1)});
+  return f;
 }
 
-const char* shape_name(Shape shape) { return shape == Shape::BumpyDisk ? "disk" : "plate"; }
+}  // namespace
+
+Face generate(Shape shape, int64_t target_triangles, bool cut) {
+  switch (shape) {
+    case Shape::BumpyDisk: return bumpy_disk(target_triangles);
+    case Shape::HoledPlate: return holed_plate(target_triangles);
+    case Shape::SeamedTube: return seamed_tube(target_triangles, cut);
+  }
+  return {};
+}
+
+const char* shape_name(Shape shape) {
+  switch (shape) {
+    case Shape::BumpyDisk: return "disk";
+    case Shape::HoledPlate: return "plate";
+    case Shape::SeamedTube: return "tube";
+  }
+  return "?";
+}
 
 bool parse_shape(const std::string& name, Shape& shape) {
   if (name == "disk") shape = Shape::BumpyDisk;
   else if (name == "plate") shape = Shape::HoledPlate;
+  else if (name == "tube") shape = Shape::SeamedTube;
   else return false;
   return true;
 }
@@ -194,6 +236,14 @@ bool write_obj(const std::string& path, const Face& face) {
   flush();
   if (std::fflush(file.get()) != 0) ok = false;
   return ok;
+}
+
+bool write_seam(const std::string& path, const Face& face) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), std::fclose);
+  if (!file) return false;
+  bool ok = std::fputs("# facet edges to cut along (0-based vertex indices), bench/face_generator.cpp\n", file.get()) >= 0;
+  for (size_t k = 0; ok && k + 1 < face.seam.size(); k += 2) ok = std::fprintf(file.get(), "%d %d\n", face.seam[k], face.seam[k + 1]) > 0;
+  return ok && std::fflush(file.get()) == 0;
 }
 
 bool write_stl(const std::string& path, const Face& face) {
