@@ -95,15 +95,27 @@ void PartitionedKKT::build_cache(const std::vector<Index>& universe, const Eigen
     for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, j); it; ++it) add_probe(static_cast<Index>(it.row()));
   // The unit columns at the probes, by forward solves on the elimination tree's paths where the
   // factor allows (SparseCholesky::inverse_entries), within the memory of one dense batch below.
-  // 1M-triangle cylinder, 1,000 seam uses: 55 s and a 2.9 GB peak as dense solves.
+  // 1M-triangle cylinder, 1,000 seam uses: 55 s and a 2.9 GB peak as dense solves. The columns
+  // of x0 and x1 (K_PX's, a few entries each, all at probes) are combinations of unit columns at
+  // their neighbours: no dense solve for them either.
   const Index batch = 64;
-  std::vector<Index> universe_p(universe_.size());
-  for (size_t q = 0; q < universe_.size(); ++q) universe_p[q] = p_index(universe_[q]);
+  std::vector<Index> unit_p(universe_.size());
+  for (size_t q = 0; q < universe_.size(); ++q) unit_p[q] = p_index(universe_[q]);
+  std::unordered_map<Index, Index> unit_col;  // P index -> column of `units`
+  for (int j = 0; j < 2; ++j)
+    for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, j); it; ++it) unit_p.push_back(static_cast<Index>(it.row()));
+  for (size_t c = 0; c < unit_p.size(); ++c) unit_col.emplace(unit_p[c], static_cast<Index>(c));
   Eigen::MatrixXcd units;
-  const bool sparse = chol_.inverse_entries(probe_, universe_p, static_cast<std::size_t>(batch) * static_cast<std::size_t>(np), units);
-  // Dense sources: K_PX columns, eta_P, and (without the above) the unit vectors; in batches.
-  const Index ndense = 2 + (eta ? 1 : 0);
-  const Index nsrc = ndense + (sparse ? 0 : static_cast<Index>(universe_.size()));
+  const bool sparse = chol_.inverse_entries(probe_, unit_p, static_cast<std::size_t>(batch) * static_cast<std::size_t>(np), units);
+  // Dense sources: eta_P, and (without the above) K_PX's columns and the unit vectors; in batches.
+  enum class Source { X0, X1, Eta, Unit };
+  std::vector<std::pair<Source, Index>> dense;
+  if (eta) dense.emplace_back(Source::Eta, 0);
+  if (!sparse) {
+    dense.emplace_back(Source::X0, 0);
+    dense.emplace_back(Source::X1, 1);
+    for (size_t q = 0; q < universe_.size(); ++q) dense.emplace_back(Source::Unit, static_cast<Index>(q));
+  }
   Eigen::VectorXd eta_p;
   if (eta) {
     eta_p.resize(np);
@@ -111,35 +123,48 @@ void PartitionedKKT::build_cache(const std::vector<Index>& universe, const Eigen
       if (p_index(u) >= 0) eta_p[p_index(u)] = (*eta)[u];
   }
   unit_.clear();
+  const Index nsrc = static_cast<Index>(dense.size());
   for (Index s0 = 0; s0 < nsrc; s0 += batch) {
     const Index nb = std::min(batch, nsrc - s0);
     Eigen::MatrixXcd B = Eigen::MatrixXcd::Zero(np, nb);
     for (Index j = 0; j < nb; ++j) {
-      const Index s = s0 + j;
-      if (s < 2) B.col(j) = Eigen::VectorXcd(K_PX_.col(s));
-      else if (eta && s == 2) B.col(j) = eta_p.cast<Complex>();
-      else B(universe_p[static_cast<size_t>(s - ndense)], j) = 1.0;
+      const auto [kind, k] = dense[static_cast<size_t>(s0 + j)];
+      if (kind == Source::Eta) B.col(j) = eta_p.cast<Complex>();
+      else if (kind == Source::Unit) B(unit_p[static_cast<size_t>(k)], j) = 1.0;
+      else B.col(j) = Eigen::VectorXcd(K_PX_.col(k));
     }
     Eigen::MatrixXcd W = chol_.solve(B);
     for (Index j = 0; j < nb; ++j) {
-      const Index s = s0 + j;
+      const auto [kind, k] = dense[static_cast<size_t>(s0 + j)];
       Column col;
       col.probe.resize(static_cast<Index>(probe_.size()));
       for (size_t q = 0; q < probe_.size(); ++q) col.probe[static_cast<Index>(q)] = W(probe_[q], j);
       if (eta) col.eta_dot = eta_p.cast<Complex>().dot(W.col(j));  // conj(eta) . w, eta real
-      if (s < 2) col_x_[s] = std::move(col);
-      else if (eta && s == 2) col_eta_ = std::move(col);
-      else unit_[universe_[static_cast<size_t>(s - ndense)]] = std::move(col);
+      if (kind == Source::Eta) col_eta_ = std::move(col);
+      else if (kind == Source::Unit) unit_[universe_[static_cast<size_t>(k)]] = std::move(col);
+      else col_x_[k] = std::move(col);
     }
   }
-  if (sparse)
+  if (sparse) {
+    // eta^T K_PP^{-1} v = (K_PP^{-1} eta)^H v (K_PP^{-1} Hermitian, eta real), v at probes only.
+    auto eta_dot = [&](Index p) { return std::conj(col_eta_.probe[probe_pos_.at(p)]); };
     for (size_t c = 0; c < universe_.size(); ++c) {
       Column col;
       col.probe = units.col(static_cast<Index>(c));
-      // eta^T K_PP^{-1} e_u = conj((K_PP^{-1} eta)_u): K_PP^{-1} is Hermitian and u is a probe.
-      if (eta) col.eta_dot = std::conj(col_eta_.probe[probe_pos_.at(universe_p[c])]);
+      if (eta) col.eta_dot = eta_dot(unit_p[c]);
       unit_[universe_[c]] = std::move(col);
     }
+    for (int j = 0; j < 2; ++j) {
+      Column col;
+      col.probe = Eigen::VectorXcd::Zero(static_cast<Index>(probe_.size()));
+      for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, j); it; ++it) {
+        const Index p = static_cast<Index>(it.row());
+        col.probe += it.value() * units.col(unit_col.at(p));
+        if (eta) col.eta_dot += eta_dot(p) * it.value();
+      }
+      col_x_[j] = std::move(col);
+    }
+  }
   cache_eta_ = eta;
   cache_valid_ = true;
 }
