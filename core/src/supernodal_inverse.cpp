@@ -122,9 +122,9 @@ bool supernodal_inverse_entries(const SupernodalView& f, const std::vector<Index
       Complex* Xa = X.data() + boff[static_cast<size_t>(a)];
       parallel_for(threads, r, [&](Index q0, Index q1) {
         for (Index q = q0; q < q1; ++q) {
-          Complex* col = Xa + static_cast<size_t>(pos[static_cast<size_t>(q)]) * static_cast<size_t>(nacol) - f.super[a];
+          Complex* col = Xa + static_cast<size_t>(pos[static_cast<size_t>(q)]) * static_cast<size_t>(nacol);
           const Complex* uq = U.data() + static_cast<size_t>(q) * nb;
-          for (int i = i0; i < i1; ++i) col[rowidx[i]] -= uq[i];
+          for (int i = i0; i < i1; ++i) col[rowidx[i] - f.super[a]] -= uq[i];
         }
       }, 64);
       i0 = i1;
