@@ -43,6 +43,49 @@ std::vector<Index> fans_per_vertex(const std::vector<Tri>& triangles, size_t ver
   return fans;
 }
 
+void throw_if_duplicates(const TriMesh& m) {
+  std::vector<Tri> canon;
+  const auto order = triangles_by_vertex_set(m.triangles, static_cast<Index>(m.vertices.size()), canon);
+  for (size_t i = 1; i < order.size(); ++i)
+    if (canon[static_cast<size_t>(order[i])] == canon[static_cast<size_t>(order[i - 1])])
+      fail(Errc::invalid_mesh, "duplicate triangles: " + tri_str(m, static_cast<size_t>(order[i - 1])) + " and " +
+                                   tri_str(m, static_cast<size_t>(order[i])) + " use the same vertices");
+}
+
+// The smallest vertex whose triangles form more than one fan, or -1: a walk around each vertex
+// across twins. What fans_per_vertex finds, without its union-find over every corner (a third of
+// the validation's memory at 1M triangles); that one still counts the fans for the message.
+Index first_multi_fan_vertex(const std::vector<Tri>& triangles, size_t vertex_count, const HalfEdges& he) {
+  const Index nc = static_cast<Index>(triangles.size() * 3);
+  std::vector<Index> degree(vertex_count, 0), start(vertex_count, -1);
+  std::vector<unsigned char> boundary_out(vertex_count, 0);
+  for (Index h = 0; h < nc; ++h) {
+    const size_t v = static_cast<size_t>(triangles[static_cast<size_t>(h / 3)][h % 3]);
+    ++degree[v];
+    if (he.twin[static_cast<size_t>(h)] < 0) {
+      start[v] = h;  // an open fan is walked from its end
+      if (boundary_out[v] < 2) ++boundary_out[v];
+    } else if (start[v] < 0) {
+      start[v] = h;
+    }
+  }
+  for (size_t v = 0; v < vertex_count; ++v) {
+    if (degree[v] == 0) continue;
+    if (boundary_out[v] > 1) return static_cast<Index>(v);  // two open fans
+    // h leaves v; the corner after it around v is the twin of the half-edge arriving at v in h's
+    // triangle. The walk ends at the fan's other end, or back at its start on a closed fan.
+    Index h = start[v], seen = 0;
+    while (seen <= degree[v]) {
+      ++seen;
+      const Index g = he.twin[static_cast<size_t>(HalfEdges::prev(h))];
+      if (g < 0 || g == start[v]) break;
+      h = g;
+    }
+    if (seen != degree[v]) return static_cast<Index>(v);
+  }
+  return -1;
+}
+
 }  // namespace
 
 MeshStats compute_stats(const TriMesh& m) {
@@ -161,24 +204,30 @@ HalfEdges validate_mesh(const TriMesh& m) {
         fail(Errc::invalid_mesh, tri_str(m, t) + ": vertex index " + std::to_string(f[j]) + " is out of range [0, " + std::to_string(nv) + ")");
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) fail(Errc::invalid_mesh, tri_str(m, t) + " repeats a vertex");
   }
-  std::vector<Tri> canon;
-  const auto order = triangles_by_vertex_set(m.triangles, static_cast<Index>(nv), canon);
-  for (size_t i = 1; i < order.size(); ++i)
-    if (canon[static_cast<size_t>(order[i])] == canon[static_cast<size_t>(order[i - 1])])
-      fail(Errc::invalid_mesh, "duplicate triangles: " + tri_str(m, static_cast<size_t>(order[i - 1])) + " and " +
-                                   tri_str(m, static_cast<size_t>(order[i])) + " use the same vertices");
-  HalfEdges he = build_halfedges(m.triangles, static_cast<Index>(nv));  // non-manifold edges, orientation
-  auto fans = fans_per_vertex(m.triangles, nv, he);
-  for (size_t v = 0; v < nv; ++v)
-    if (fans[v] > 1)
-      fail(Errc::invalid_mesh, "non-manifold vertex " + std::to_string(v) + ": its triangles form " + std::to_string(fans[v]) + " separate fans");
-  UnionFind comp(static_cast<Index>(nt));
-  for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h)
-    if (he.twin[static_cast<size_t>(h)] >= 0) comp.unite(h / 3, he.twin[static_cast<size_t>(h)] / 3);
-  for (Index t = 0; t < static_cast<Index>(nt); ++t)
-    if (comp.find(t) != 0)
-      fail(Errc::invalid_mesh, "the mesh has several connected components (" + tri_str(m, static_cast<size_t>(t)) + " is not connected to triangle 0); flatten each component as its own face");
-  return he;
+  // Duplicate triangles are looked for only when the mesh fails a later check, or has two
+  // triangles: a duplicate pair either repeats a directed edge (inconsistent or non-manifold edge)
+  // or, reversed, closes on itself (a separate component, or the whole mesh if it has two triangles).
+  // Its message, the more telling one, still wins; a valid mesh skips the sort (20 MB at 1M
+  // triangles; with the fan walk, validation 0.059 -> 0.050 s).
+  if (nt <= 2) throw_if_duplicates(m);
+  try {
+    HalfEdges he = build_halfedges(m.triangles, static_cast<Index>(nv));  // non-manifold edges, orientation
+    const Index bad = first_multi_fan_vertex(m.triangles, nv, he);
+    if (bad >= 0) {
+      const auto fans = fans_per_vertex(m.triangles, nv, he);
+      fail(Errc::invalid_mesh, "non-manifold vertex " + std::to_string(bad) + ": its triangles form " + std::to_string(fans[static_cast<size_t>(bad)]) + " separate fans");
+    }
+    UnionFind comp(static_cast<Index>(nt));
+    for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h)
+      if (he.twin[static_cast<size_t>(h)] >= 0) comp.unite(h / 3, he.twin[static_cast<size_t>(h)] / 3);
+    for (Index t = 0; t < static_cast<Index>(nt); ++t)
+      if (comp.find(t) != 0)
+        fail(Errc::invalid_mesh, "the mesh has several connected components (" + tri_str(m, static_cast<size_t>(t)) + " is not connected to triangle 0); flatten each component as its own face");
+    return he;
+  } catch (const Error&) {
+    throw_if_duplicates(m);
+    throw;
+  }
 }
 
 }  // namespace wefm

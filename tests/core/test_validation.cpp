@@ -57,6 +57,66 @@ TEST_CASE("invalid meshes are rejected with a precise message") {
   }
 }
 
+TEST_CASE("non-manifold vertices: every kind of second fan is found, with the first vertex and its fan count") {
+  // Two fans of 6 triangles each around vertex 0, apexes of two cones touching: open fans, closed
+  // fans, and one of each.
+  auto cone = [](TriMesh& m, Index apex, double z, bool closed, bool upward) {
+    const Index base = static_cast<Index>(m.vertices.size());
+    const double step = std::acos(-1.0) / 3;
+    for (int k = 0; k < 6; ++k) m.vertices.emplace_back(std::cos(k * step), std::sin(k * step), z);
+    const int last = closed ? 6 : 5;
+    for (int k = 0; k < last; ++k) {
+      const Index a = base + k, b = base + (k + 1) % 6;
+      if (upward) m.triangles.push_back({apex, a, b});
+      else m.triangles.push_back({apex, b, a});
+    }
+  };
+  for (bool first_closed : {false, true})
+    for (bool second_closed : {false, true}) {
+      CAPTURE(first_closed);
+      CAPTURE(second_closed);
+      TriMesh m;
+      m.vertices = {Vec3(0, 0, 0)};
+      cone(m, 0, 1, first_closed, true);
+      cone(m, 0, -1, second_closed, false);
+      // A strip joining the two rims keeps the mesh connected (vertices 1, 2 to 7, 8), so the
+      // apex is the only defect.
+      m.triangles.push_back({2, 1, 7});
+      m.triangles.push_back({2, 7, 8});
+      const std::string msg = message_of([&] { validate_mesh(m); });
+      CHECK(msg == "non-manifold vertex 0: its triangles form 2 separate fans");
+    }
+}
+
+TEST_CASE("duplicate triangles are named before any other defect they cause, and without one") {
+  SUBCASE("the same orientation: reported instead of the inconsistent edge") {
+    TriMesh m = test::flat_patch(3);
+    m.triangles.push_back(m.triangles[4]);
+    CHECK(message_of([&] { validate_mesh(m); }).rfind("duplicate triangles: triangle 4 ", 0) == 0);
+  }
+  SUBCASE("reversed, closing on itself: reported instead of the second component") {
+    TriMesh m = test::flat_patch(3);
+    const Index n = static_cast<Index>(m.vertices.size());
+    m.vertices.emplace_back(10, 10, 0);
+    m.vertices.emplace_back(11, 10, 0);
+    m.vertices.emplace_back(10, 11, 0);
+    m.triangles.push_back({n, n + 1, n + 2});
+    m.triangles.push_back({n, n + 2, n + 1});
+    CHECK(message_of([&] { validate_mesh(m); }).rfind("duplicate triangles", 0) == 0);
+  }
+  SUBCASE("a mesh of one reversed pair, which no other check rejects") {
+    TriMesh m;
+    m.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    m.triangles = {{0, 1, 2}, {0, 2, 1}};
+    CHECK(message_of([&] { validate_mesh(m); }) ==
+          "duplicate triangles: triangle 0 (0, 1, 2) and triangle 1 (0, 2, 1) use the same vertices");
+  }
+  SUBCASE("a valid mesh passes") {
+    const TriMesh m = test::flat_patch(3);
+    CHECK(validate_mesh(m).twin.size() == 3 * m.triangles.size());
+  }
+}
+
 TEST_CASE("a closed surface with no cut is reported") {
   // Octahedron.
   TriMesh m;
