@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -361,5 +362,9 @@ int main(int argc, char** argv) {
   st.cgal = cgal == "none" ? "" : cgal == "auto" ? (executable(dir + "wefm-bench-cgal") ? dir + "wefm-bench-cgal" : "") : cgal;
   if (!st.cli.empty() && !executable(st.cli)) usage_error("--cli: " + st.cli + " is not an executable");
   if (!st.cgal.empty() && !executable(st.cgal)) usage_error("--cgal: " + st.cgal + " is not an executable");
+  // The scratch directory is made now: a missing one used to fail only the file cases, minutes in.
+  std::error_code ec;
+  std::filesystem::create_directories(st.work, ec);
+  if (ec || !std::filesystem::is_directory(st.work)) usage_error("--work: cannot make the directory " + st.work + (ec ? ": " + ec.message() : ""));
   return run_benchmark(st, command);
 }
