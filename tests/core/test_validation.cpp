@@ -229,6 +229,30 @@ TEST_CASE("contradictory constraints are reported as singular") {
   CHECK(f.has_result());
 }
 
+TEST_CASE("redundant but consistent constraints are solved (the KKT matrix is singular)") {
+  // The same pin twice, and a third row that is the sum of two pins: M has a null space, which
+  // partial pivoting cannot take, so the solve must fall back to full pivoting and still hold
+  // every row.
+  Face f;
+  f.set_mesh(test::flat_patch(6));
+  LinearRow a, b, sum;
+  a.terms = {{0, 1.0}};
+  a.rhs = Complex(1, 2);
+  b.terms = {{6, 1.0}};
+  b.rhs = Complex(3, 2);
+  sum.terms = {{0, 1.0}, {6, 1.0}};
+  sum.rhs = Complex(4, 4);
+  f.add_constraint(a);
+  f.add_constraint(a);
+  f.add_constraint(b);
+  f.add_constraint(sum);
+  f.set_options(test::with_s(0));
+  f.solve(nullptr, nullptr);
+  CHECK(std::abs(f.result().uv[0] - Complex(1, 2)) < 1e-9);
+  CHECK(std::abs(f.result().uv[6] - Complex(3, 2)) < 1e-9);
+  CHECK(f.result().report.quality.flips == 0);
+}
+
 TEST_CASE("two pins fix the layout exactly where the caller put them") {
   Face f;
   f.set_mesh(test::flat_patch(6));
