@@ -1,6 +1,7 @@
 #include "wefm/core/flatten.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +29,10 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 
 // Continuation steps below the target s end at this multiple of rho_tolerance.
 constexpr double kWayUpTolerance = 10.0;
+
+// A mode candidate this close to the best one's score (or better) is solved again with
+// refinement before the choice; the rest are judged unrefined.
+constexpr double kRefineMargin = 1e-6;
 
 class Stage {
  public:
@@ -279,21 +284,24 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         // edges, one edge's choice can remove a crossing while another still makes the layout
         // invalid, and a flat -2 would hide that progress from the descent.
         using Rank = std::tuple<int, std::int64_t, double>;
-        Rank best{0, std::numeric_limits<std::int64_t>::min(), -std::numeric_limits<double>::infinity()};
-        EdgeMode best_mode = mode[static_cast<size_t>(e)];
-        VectorXc best_z = z;
         // Periodic first: on ties (a developable cylinder is exact both free and periodic) the
         // periodic domain is the one a mesher wants, with matching nodes on the two sides.
-        for (EdgeMode cand : {EdgeMode::Periodic, EdgeMode::Free, EdgeMode::Rotational, EdgeMode::Scar}) {
+        constexpr std::array<EdgeMode, 4> kOrder = {EdgeMode::Periodic, EdgeMode::Free, EdgeMode::Rotational, EdgeMode::Scar};
+        std::array<Rank, 4> ranks;
+        std::array<double, 4> scores{};
+        std::array<std::vector<Complex>, 4> rots;
+        std::array<VectorXc, 4> refined;  // the layouts solved with refinement (free always)
+        auto try_mode = [&](size_t k, bool refine) {
+          const EdgeMode cand = kOrder[k];
           md[static_cast<size_t>(e)] = cand;
-          std::vector<Complex> rot = rotation;
-          if (cand == EdgeMode::Rotational) rot[static_cast<size_t>(e)] = estimate_rotation(r, z_free);
+          rots[k] = rotation;
+          if (cand == EdgeMode::Rotational) rots[k][static_cast<size_t>(e)] = estimate_rotation(r, z_free);
           double sc;
           Rank rank;
           VectorXc zc;
           try {
             if (cand == EdgeMode::Free && free_singular) fail(Errc::singular, "free candidate");
-            zc = cand == EdgeMode::Free ? z_free : kkt.solve(rows_with(md, rot, gauge.vector ? &vec : nullptr), eta_ptr);
+            zc = cand == EdgeMode::Free ? z_free : kkt.solve(rows_with(md, rots[k], gauge.vector ? &vec : nullptr), eta_ptr, refine);
             recentre(zc);
             glue_scars(tp, md, zc);
             sc = score_of(zc);
@@ -309,25 +317,62 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
             rank = Rank{0, std::numeric_limits<std::int64_t>::min(), sc};
           }
           if (cand == EdgeMode::Free) z_free = zc;
-          res.edge_scores[static_cast<size_t>(e)][static_cast<size_t>(cand)] = std::isfinite(sc) ? sc : -3.0;
-          // A constrained mode must beat free clearly: constraints are only worth their rigidity.
-          const bool better = std::get<0>(rank) != std::get<0>(best) || std::get<1>(rank) != std::get<1>(best)
-                                  ? rank > best
-                                  : std::get<2>(rank) > std::get<2>(best) + 1e-9;
-          if (better) {
-            best = rank;
-            best_mode = cand;
-            best_z = zc;
-            if (cand == EdgeMode::Rotational) rotation[static_cast<size_t>(e)] = rot[static_cast<size_t>(e)];
+          ranks[k] = rank;
+          scores[k] = sc;
+          if (refine || cand == EdgeMode::Free) refined[k] = std::move(zc);
+        };
+        // The best candidate in kOrder (the edge's current mode when none ranks above nothing).
+        auto best_of = [&] {
+          Rank best{0, std::numeric_limits<std::int64_t>::min(), -std::numeric_limits<double>::infinity()};
+          int kb = -1;
+          for (size_t k = 0; k < kOrder.size(); ++k) {
+            // A constrained mode must beat free clearly: constraints are only worth their rigidity.
+            const bool better = std::get<0>(ranks[k]) != std::get<0>(best) || std::get<1>(ranks[k]) != std::get<1>(best)
+                                    ? ranks[k] > best
+                                    : std::get<2>(ranks[k]) > std::get<2>(best) + 1e-9;
+            if (better) {
+              best = ranks[k];
+              kb = static_cast<int>(k);
+            }
           }
+          return kb;
+        };
+        // Every candidate but free (refined above) is solved without refinement first, and again
+        // with it only where it could matter: the winner and the valid candidates within
+        // kRefineMargin of its score, or every candidate when none is valid. Refinement moves a
+        // score by 5e-10 at most (1M-triangle tube), far inside the margin, so the choice is the
+        // one refined candidates give; each refinement costs two factor solves (0.3 s at 1M).
+        for (size_t k = 0; k < kOrder.size(); ++k) try_mode(k, false);
+        const int first = best_of();
+        const bool valid_best = first >= 0 && std::get<0>(ranks[static_cast<size_t>(first)]) == 1;
+        for (size_t k = 0; k < kOrder.size(); ++k) {
+          if (kOrder[k] == EdgeMode::Free) continue;
+          const bool contender = !valid_best || (std::get<0>(ranks[k]) == 1 && scores[k] >= scores[static_cast<size_t>(first)] - kRefineMargin);
+          if (contender) try_mode(k, true);
+        }
+        const int kb = best_of();
+        for (size_t k = 0; k < kOrder.size(); ++k) {
+          const double sc = scores[k];
+          res.edge_scores[static_cast<size_t>(e)][static_cast<size_t>(kOrder[k])] = std::isfinite(sc) ? sc : -3.0;
+        }
+        EdgeMode best_mode = mode[static_cast<size_t>(e)];
+        VectorXc best_z = z;
+        double best_score = -std::numeric_limits<double>::infinity();
+        if (kb >= 0) {
+          const size_t k = static_cast<size_t>(kb);
+          if (refined[k].size() == 0) try_mode(k, true);  // not expected: the winner is a contender
+          best_mode = kOrder[k];
+          best_z = std::move(refined[k]);
+          best_score = scores[k];
+          if (best_mode == EdgeMode::Rotational) rotation[static_cast<size_t>(e)] = rots[k][static_cast<size_t>(e)];
         }
         if (best_mode != mode[static_cast<size_t>(e)]) {
           changed = true;
           last_changed = i;
         }
         mode[static_cast<size_t>(e)] = best_mode;
-        z = best_z;
-        current = std::get<2>(best);
+        z = std::move(best_z);
+        current = best_score;
       }
       if (!changed) break;
     }
