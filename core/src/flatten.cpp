@@ -360,7 +360,8 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         double best_score = -std::numeric_limits<double>::infinity();
         if (kb >= 0) {
           const size_t k = static_cast<size_t>(kb);
-          if (refined[k].size() == 0) try_mode(k, true);  // not expected: the winner is a contender
+          // A contender that refinement made invalid can leave the win to a candidate judged unrefined.
+          if (refined[k].size() == 0) try_mode(k, true);
           best_mode = kOrder[k];
           best_z = std::move(refined[k]);
           best_score = scores[k];

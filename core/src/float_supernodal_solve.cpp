@@ -110,38 +110,11 @@ WEFM_AVX2 inline float horizontal_sum(__m256 v) {
 }
 
 // sum conj(l[i]) w[i] over i < m. Re = sum lr wr + li wi (the lanes of l * w); Im = sum lr wi - li wr
-// (the lanes of l * swapped w, real lanes minus imaginary lanes).
+// (the lanes of l * swapped w, real lanes minus imaginary lanes). The entries are taken from the
+// end down: the backward solve then reads the whole factor as one descending stream (columns and
+// supernodes are visited from the top down), which the prefetcher follows; read upward, every
+// column started a new stream (the solve took 26.3 against 21.3 ms on 2 threads, 41M entries).
 WEFM_AVX2 inline void dot_conj(const float* l, const float* w, int m, float& re, float& im) {
-  __m256 a0 = _mm256_setzero_ps(), b0 = _mm256_setzero_ps(), a1 = _mm256_setzero_ps(), b1 = _mm256_setzero_ps();
-  int k = 0;
-  for (; k + 8 <= m; k += 8) {
-    const __m256 l0 = _mm256_loadu_ps(l + 2 * k), l1 = _mm256_loadu_ps(l + 2 * k + 8);
-    const __m256 w0 = _mm256_loadu_ps(w + 2 * k), w1 = _mm256_loadu_ps(w + 2 * k + 8);
-    a0 = _mm256_fmadd_ps(l0, w0, a0);
-    a1 = _mm256_fmadd_ps(l1, w1, a1);
-    b0 = _mm256_fmadd_ps(l0, _mm256_permute_ps(w0, 0xB1), b0);
-    b1 = _mm256_fmadd_ps(l1, _mm256_permute_ps(w1, 0xB1), b1);
-  }
-  for (; k + 4 <= m; k += 4) {
-    const __m256 l0 = _mm256_loadu_ps(l + 2 * k), w0 = _mm256_loadu_ps(w + 2 * k);
-    a0 = _mm256_fmadd_ps(l0, w0, a0);
-    b0 = _mm256_fmadd_ps(l0, _mm256_permute_ps(w0, 0xB1), b0);
-  }
-  if (k < m) {
-    const __m256i mask = tail_mask(m - k);
-    const __m256 l0 = _mm256_maskload_ps(l + 2 * k, mask), w0 = _mm256_maskload_ps(w + 2 * k, mask);
-    a0 = _mm256_fmadd_ps(l0, w0, a0);
-    b0 = _mm256_fmadd_ps(l0, _mm256_permute_ps(w0, 0xB1), b0);
-  }
-  const __m256 sign = _mm256_setr_ps(1, -1, 1, -1, 1, -1, 1, -1);
-  re = horizontal_sum(_mm256_add_ps(a0, a1));
-  im = horizontal_sum(_mm256_mul_ps(_mm256_add_ps(b0, b1), sign));
-}
-
-// dot_conj with the entries taken from the end down: the backward solve then reads the whole
-// factor as one descending stream (columns and supernodes are visited from the top down), which
-// the prefetcher follows; read upward, every column started a new stream.
-WEFM_AVX2 inline void dot_conj_down(const float* l, const float* w, int m, float& re, float& im) {
   __m256 a0 = _mm256_setzero_ps(), b0 = _mm256_setzero_ps(), a1 = _mm256_setzero_ps(), b1 = _mm256_setzero_ps();
   int k = m;
   for (; k >= 8; k -= 8) {
@@ -219,7 +192,7 @@ WEFM_AVX2 void backward_supernode(const SupernodalView& f, const float* values, 
   for (int j = nc - 1; j >= 0; --j) {
     const float* col = L + 2 * (static_cast<size_t>(j) * nr + j);
     float re, im;
-    dot_conj_down(col + 2, g + 2 * (j + 1), nr - j - 1, re, im);
+    dot_conj(col + 2, g + 2 * (j + 1), nr - j - 1, re, im);
     g[2 * j] = (g[2 * j] - re) * col[0];
     g[2 * j + 1] = (g[2 * j + 1] - im) * col[0];
   }
