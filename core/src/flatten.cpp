@@ -291,6 +291,9 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         std::array<double, 4> scores{};
         std::array<std::vector<Complex>, 4> rots;
         std::array<VectorXc, 4> refined;  // the layouts solved with refinement (free always)
+        // The unrefined solves, kept so that refining a contender goes on from its solve
+        // (PartitionedKKT::refine) instead of repeating it: one factor solve less per contender.
+        std::array<PartitionedKKT::Unrefined, 4> unrefined;
         auto try_mode = [&](size_t k, bool refine) {
           const EdgeMode cand = kOrder[k];
           md[static_cast<size_t>(e)] = cand;
@@ -301,7 +304,18 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
           VectorXc zc;
           try {
             if (cand == EdgeMode::Free && free_singular) fail(Errc::singular, "free candidate");
-            zc = cand == EdgeMode::Free ? z_free : kkt.solve(rows_with(md, rots[k], gauge.vector ? &vec : nullptr), eta_ptr, refine);
+            if (cand == EdgeMode::Free) {
+              zc = z_free;
+            } else {
+              const std::vector<LinearRow> rows = rows_with(md, rots[k], gauge.vector ? &vec : nullptr);
+              if (refine) {
+                zc = unrefined[k].z.size() > 0 ? kkt.refine(rows, eta_ptr, std::move(unrefined[k])) : kkt.solve(rows, eta_ptr);
+                unrefined[k] = PartitionedKKT::Unrefined{};
+              } else {
+                unrefined[k] = kkt.solve_unrefined(rows, eta_ptr);
+                zc = unrefined[k].z;
+              }
+            }
             recentre(zc);
             glue_scars(tp, md, zc);
             sc = score_of(zc);

@@ -205,7 +205,7 @@ void PartitionedKKT::prepare(const std::vector<Index>& uses, const Eigen::Vector
   build_cache(u, eta);
 }
 
-VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, bool refine) {
+void PartitionedKKT::cover(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta) {
   for (size_t r = 0; r < rows.size(); ++r)
     for (auto& [u, g] : rows[r].terms)
       if (u < 0 || u >= n_) fail(Errc::invalid_constraint, "constraint " + std::to_string(r) + " names use " + std::to_string(u) + ", which does not exist (" + std::to_string(n_) + " uses)");
@@ -221,11 +221,34 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
     if (cache_valid_ && cache_eta_ != eta) cache_valid_ = false;
     prepare(need, eta);
   }
+}
+
+PartitionedKKT::Unrefined PartitionedKKT::solve_unrefined(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta) {
+  cover(rows, eta);
   const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
   Eigen::VectorXcd d(m);
   for (Index r = 0; r < m; ++r) d[r] = r < static_cast<Index>(rows.size()) ? rows[static_cast<size_t>(r)].rhs : Complex(0, 0);
-  Eigen::VectorXcd lambda;
-  VectorXc z = eliminate(rows, eta, VectorXc::Zero(n_), d, lambda, true);
+  Unrefined u;
+  u.z = eliminate(rows, eta, VectorXc::Zero(n_), d, u.lambda, true);
+  return u;
+}
+
+VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, bool refine) {
+  Unrefined u = solve_unrefined(rows, eta);
+  if (refine) refine_in_place(rows, eta, u.z, u.lambda);
+  return std::move(u.z);
+}
+
+VectorXc PartitionedKKT::refine(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, Unrefined start) {
+  cover(rows, eta);
+  refine_in_place(rows, eta, start.z, start.lambda);
+  return std::move(start.z);
+}
+
+void PartitionedKKT::refine_in_place(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, VectorXc& z, Eigen::VectorXcd& lambda) {
+  const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
+  Eigen::VectorXcd d(m);
+  for (Index r = 0; r < m; ++r) d[r] = r < static_cast<Index>(rows.size()) ? rows[static_cast<size_t>(r)].rhs : Complex(0, 0);
   // The elimination is exact in exact arithmetic, but multipliers that should vanish pick up
   // rounding noise that K_PP^{-1} C^H amplifies; refining on the full KKT residual removes it.
   auto apply_c = [&](const VectorXc& zz) {
@@ -254,7 +277,7 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
   // already accurate to rounding costs no extra solves (each refinement costs two).
   const double kscale = kscale_;
   double prev = std::numeric_limits<double>::infinity();
-  for (int it = 0; it < (refine ? 3 : 0); ++it) {
+  for (int it = 0; it < 3; ++it) {
     const VectorXc rz = -(apply_k(z) + apply_ch(lambda));
     const Eigen::VectorXcd rc = d - apply_c(z);
     const double rnorm = rz.norm() / (kscale * z.norm() + 1e-300) + rc.norm() / (1.0 + d.norm());
@@ -265,7 +288,6 @@ VectorXc PartitionedKKT::solve(const std::vector<LinearRow>& rows, const Eigen::
     z += dz;
     lambda += dl;
   }
-  return z;
 }
 
 VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f,

@@ -36,6 +36,17 @@ class PartitionedKKT {
   // a choice, such as the first gauge's, which only locates two far-apart boundary uses.
   VectorXc solve(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, bool refine = true);
 
+  // An unrefined solve that keeps what refine() needs to go on from it later, so that a layout
+  // first solved only to rank it (a repeated edge's mode candidate) is refined without repeating
+  // its solve. The rows and eta must be the same in both calls.
+  struct Unrefined {
+    VectorXc z;
+    Eigen::VectorXcd lambda;  // the multipliers of the rows (and of eta, last)
+  };
+  Unrefined solve_unrefined(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta);
+  // solve(rows, eta) from an unrefined solution: the same rounds of refinement.
+  VectorXc refine(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, Unrefined start);
+
   // Precompute the columns for every use in `uses` (so later solves touching them are cheap).
   void prepare(const std::vector<Index>& uses, const Eigen::VectorXd* eta);
 
@@ -66,6 +77,10 @@ class PartitionedKKT {
   // One elimination: K z + C^H lambda = f, C z = d. Returns z and writes lambda.
   VectorXc eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f, const Eigen::VectorXcd& d,
                      Eigen::VectorXcd& lambda, bool check);
+  // Makes the cached columns cover every use the rows name (and eta).
+  void cover(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta);
+  // Up to three rounds of refinement on the full KKT residual.
+  void refine_in_place(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, VectorXc& z, Eigen::VectorXcd& lambda);
   Index p_index(Index use) const { return p_of_[static_cast<size_t>(use)]; }
   VectorXc apply_k(const VectorXc& z) const;
 
