@@ -20,6 +20,7 @@
 #include "exit_codes.hpp"
 
 #ifdef WEFM_CLI_HAVE_OCCT
+#include "cad_plugin_loader.hpp"
 #include "cad_face_files.hpp"
 #include "cad_model.hpp"
 #include "face_job.hpp"
@@ -228,8 +229,13 @@ int run_model(const std::vector<std::string>& argv) {
   const std::string model_path = args.positionals[0];
   const std::filesystem::path outdir = args.value("output");
 
+  const wefm_cad::PluginApi* cad = cad_plugin(error);
+  if (!cad) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return kExitIo;
+  }
   wefm_cad::CadModel model;
-  if (!wefm_cad::load_cad_model(model_path, tess, model, error)) {
+  if (!cad->load_model(model_path, tess, model, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }

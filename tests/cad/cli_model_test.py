@@ -33,6 +33,36 @@ def check_mesh_model(wefm, model, tmp):
     assert int(elements[1]) == len(F), elements
 
 
+def check_plugin(wefm, model, tmp):
+    """Open CASCADE is a plugin: the tool itself does not load it (every command would pay its dynamic
+    linking), and a missing or foreign module is an I/O error that says so, not a crash."""
+    needed = subprocess.run(["readelf", "-d", wefm], capture_output=True, text=True).stdout
+    assert "NEEDED" in needed and "libTK" not in needed, needed
+    plugin = os.path.join(os.path.dirname(wefm), "wefm-cad-occt.so")
+    assert "libTK" in subprocess.run(["readelf", "-d", plugin], capture_output=True, text=True).stdout
+    out = os.path.join(tmp, "plugin_out")
+    # A shared object without the entry point: the C library's maths library.
+    libm = next(p for p in ("/lib/x86_64-linux-gnu/libm.so.6", "/usr/lib/x86_64-linux-gnu/libm.so.6", "/lib64/libm.so.6",
+                            "/usr/lib64/libm.so.6", "/lib/libm.so.6") if os.path.exists(p))
+    cases = ((os.path.join(tmp, "none.so"), "no such file"),
+             (wefm, wefm + ": "),  # an executable: dlerror's own words follow the path
+             (libm, "not a CAD plugin of this wefm"))
+    for path, why in cases:
+        for command in ("model", "mesh-model"):
+            extra = ["-o", out] if command == "model" else ["-o", out + ".obj", "--size", "2"]
+            p = subprocess.run([wefm, command, model] + extra,
+                               capture_output=True, text=True, env=dict(os.environ, WEFM_CAD_PLUGIN=path))
+            assert p.returncode == 3, (command, path, p.returncode, p.stderr)
+            assert "CAD import is not available" in p.stderr and why in p.stderr, (command, path, p.stderr)
+    # Commands without a CAD model never open it: flatten works with the module unreachable.
+    face = os.path.join(tmp, "tri.obj")
+    with open(face, "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.2\nf 1 2 3\nf 2 4 3\n")
+    p = subprocess.run([wefm, "flatten", face, "-o", os.path.join(tmp, "tri_uv.obj"), "-q"], capture_output=True,
+                       text=True, env=dict(os.environ, WEFM_CAD_PLUGIN=os.path.join(tmp, "none.so")))
+    assert p.returncode == 0, p.stderr
+
+
 def main():
     wefm, model = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as tmp:
@@ -69,6 +99,7 @@ def main():
         # A missing model is an I/O error naming the file.
         p = subprocess.run([wefm, "model", os.path.join(tmp, "nope.step"), "-o", out], capture_output=True, text=True)
         assert p.returncode == 3 and "nope.step" in p.stderr, (p.returncode, p.stderr)
+        check_plugin(wefm, model, tmp)
     print("ok")
 
 

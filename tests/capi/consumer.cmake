@@ -3,7 +3,8 @@
 #   find_package  configure, build and run tests/capi/consumer against PREFIX with find_package(wefm)
 #   pkg-config    compile and run the same program with the flags `pkg-config wefm` gives
 #   fortran       configure, build and run tests/capi/consumer_fortran (wefm::wefm_fortran, module wefm)
-# Inputs: MODE PREFIX BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER Fortran_COMPILER LIBDIR INCLUDEDIR VERSION SOVERSION, and FLAGS
+# Inputs: MODE PREFIX BUILD_DIR SOURCE_DIR WORK_DIR C_COMPILER Fortran_COMPILER LIBDIR INCLUDEDIR VERSION SOVERSION,
+# CAD_PLUGIN (ON when the CAD plugin is built) and CAD_MODEL (a STEP file for it), and FLAGS
 # (compile and link flags the library's build needs in its consumers: the sanitizers of a sanitizer build)
 cmake_minimum_required(VERSION 3.20)
 
@@ -28,6 +29,18 @@ if(MODE STREQUAL "install")
       message(FATAL_ERROR "not installed: ${PREFIX}/${f}")
     endif()
   endforeach()
+  # The CAD plugin sits under LIBDIR/wefm, where the installed tool finds it from its own directory.
+  if(CAD_PLUGIN)
+    if(NOT EXISTS ${PREFIX}/${LIBDIR}/wefm/wefm-cad-occt.so)
+      message(FATAL_ERROR "not installed: ${PREFIX}/${LIBDIR}/wefm/wefm-cad-occt.so")
+    endif()
+    file(REMOVE_RECURSE ${PREFIX}/model-out)
+    run(${CMAKE_COMMAND} -E env LD_LIBRARY_PATH=${PREFIX}/${LIBDIR} WEFM_CAD_PLUGIN=
+        ${PREFIX}/bin/wefm model ${CAD_MODEL} -o ${PREFIX}/model-out -q)
+    if(NOT EXISTS ${PREFIX}/model-out/index.json)
+      message(FATAL_ERROR "the installed wefm model wrote no index.json")
+    endif()
+  endif()
   # The development link and the SONAME link must be links to the real file, as ldconfig expects.
   foreach(link libwefm.so libwefm.so.${SOVERSION})
     if(NOT IS_SYMLINK ${PREFIX}/${LIBDIR}/${link})
