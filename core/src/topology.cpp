@@ -2,6 +2,7 @@
 #include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -56,7 +57,13 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
   Topology tp;
   tp.he = half_edges ? *half_edges : build_halfedges(m.triangles, static_cast<Index>(m.vertices.size()));
   const HalfEdges& he = tp.he;
-  HalfEdgeLookup look(m.triangles, static_cast<Index>(m.vertices.size()));
+  // The directed-edge lookup is built only when something names facet edges (given edges, seams,
+  // repeated edges): a face derived from its boundary alone skips its 16 MB at 1M triangles.
+  std::optional<HalfEdgeLookup> lookup;
+  auto look = [&]() -> const HalfEdgeLookup& {
+    if (!lookup) lookup.emplace(m.triangles, static_cast<Index>(m.vertices.size()));
+    return *lookup;
+  };
   const Index nh = static_cast<Index>(he.twin.size());
   const bool given = !spec.loops.empty();
   tp.derived = !given;
@@ -72,7 +79,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
       for (size_t j = 0; j < ch.size(); ++j) {
         if (ch[j] < 0 || ch[j] >= static_cast<Index>(m.vertices.size()))
           fail(Errc::invalid_topology, "edge " + to_string(e) + ": vertex index " + to_string(ch[j]) + " at position " + to_string(j) + " is out of range");
-        if (j && look.find(ch[j - 1], ch[j]) < 0 && look.find(ch[j], ch[j - 1]) < 0)
+        if (j && look().find(ch[j - 1], ch[j]) < 0 && look().find(ch[j], ch[j - 1]) < 0)
           fail(Errc::invalid_topology, "edge " + to_string(e) + " does not follow facet edges: vertices " + to_string(ch[j - 1]) + " and " + to_string(ch[j]) + " (positions " + to_string(j - 1) + ", " + to_string(j) + ") are not joined by a triangle edge");
       }
     }
@@ -96,7 +103,8 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
   } else {
     cut_pairs = spec.seams;
   }
-  std::vector<char> cut = mark_cuts(m, he, look, cut_pairs, given ? "repeated edge facet" : "seam");
+  std::vector<char> cut = cut_pairs.empty() ? std::vector<char>(static_cast<size_t>(nh), 0)
+                                            : mark_cuts(m, he, look(), cut_pairs, given ? "repeated edge facet" : "seam");
 
   // --- Vertex uses: corners joined across uncut interior edges ------------------------------------
   UnionFind uf(nh);
@@ -106,16 +114,17 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
     uf.unite(h, HalfEdges::next(g));
     uf.unite(HalfEdges::next(h), g);
   }
+  // A group's root is its smallest corner (UnionFind), met first in this ascending walk: uses are
+  // numbered by their first corner, and every later corner finds its root's use already set.
   assign_huge(tp.corner_use, static_cast<size_t>(nh), -1);
-  std::vector<Index> root_use;
-  assign_huge(root_use, static_cast<size_t>(nh), -1);
   for (Index c = 0; c < nh; ++c) {
     const Index r = uf.find(c);
-    if (root_use[static_cast<size_t>(r)] < 0) {
-      root_use[static_cast<size_t>(r)] = tp.use_count++;
+    if (r == c) {
+      tp.corner_use[static_cast<size_t>(c)] = tp.use_count++;
       tp.use_vertex.push_back(tri_vertex(m, c));
+    } else {
+      tp.corner_use[static_cast<size_t>(c)] = tp.corner_use[static_cast<size_t>(r)];
     }
-    tp.corner_use[static_cast<size_t>(c)] = root_use[static_cast<size_t>(r)];
   }
 
   // --- Boundary cycles of the cut mesh, in uses ----------------------------------------------------
@@ -168,7 +177,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
         prev_end = ch.back();
         const bool repeated = fwd[static_cast<size_t>(u.edge)] == 1 && bwd[static_cast<size_t>(u.edge)] == 1;
         for (size_t j = 1; j < ch.size(); ++j) {
-          const Index h = look.find(ch[j - 1], ch[j]);
+          const Index h = look().find(ch[j - 1], ch[j]);
           if (h < 0)
             fail(Errc::invalid_topology, "loop " + to_string(l) + " runs the wrong way along edge " + to_string(u.edge) + " at facet edge (" + to_string(ch[j - 1]) + ", " + to_string(ch[j]) + "): the face must lie on the left of every loop");
           if (!repeated && he.twin[static_cast<size_t>(h)] >= 0)
@@ -325,7 +334,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
     r.side_a.assign(ch.size(), -1);
     r.side_b.assign(ch.size(), -1);
     for (size_t j = 0; j + 1 < ch.size(); ++j) {
-      const Index h = look.find(ch[j], ch[j + 1]);
+      const Index h = look().find(ch[j], ch[j + 1]);
       const Index g = h < 0 ? -1 : he.twin[static_cast<size_t>(h)];
       if (h < 0 || g < 0) fail(Errc::invalid_topology, "repeated edge " + to_string(e) + " is not interior at facet edge (" + to_string(ch[j]) + ", " + to_string(ch[j + 1]) + ")");
       if (r.side_a[j] < 0) r.side_a[j] = tp.corner_use[static_cast<size_t>(h)];
