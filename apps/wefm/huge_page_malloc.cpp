@@ -27,9 +27,9 @@
 // must keep the process they watch); transparent huge pages not in `madvise` mode (`always` needs
 // no advice, `never` ignores it); glibc older than 2.35 (no such tunable); less than 2 GB of free
 // memory (a machine whose memory is full of page cache can stall in compaction to find huge pages);
-// `flatten` or `mesh` of a small face (every file it reads under kSmallInput):
-// starting again loads the libraries a second time, Open CASCADE's among them (a 216-triangle face
-// took 0.13 s against 0.075 s without it), more than such a face saves in page faults.
+// `flatten` or `mesh` of a small face (every file it reads under kSmallInput): starting again
+// costs a second process start (0.01 s since the tool no longer links Open CASCADE; 0.055 s
+// before), more than such a face saves in page faults.
 
 namespace wefm_cli {
 
@@ -42,8 +42,10 @@ bool solving_command(const char* c) {
   return false;
 }
 
-// About 80k triangles as OBJ or binary STL.
-constexpr std::uintmax_t kSmallInput = 4u << 20;
+// About 5k triangles as OBJ (10k as binary STL). Plate faces at s = 1, whole `wefm flatten`,
+// without and with huge-page malloc: 2k triangles 0.04 s both, 5k 0.06 -> 0.055, 10k 0.11 ->
+// 0.08, 20k 0.20 -> 0.15, 100k 0.72 -> 0.58; the second start costs 0.01 s.
+constexpr std::uintmax_t kSmallInput = 256u << 10;
 
 bool small_face_command(int argc, char** argv) {
   if (std::strcmp(argv[1], "flatten") != 0 && std::strcmp(argv[1], "mesh") != 0) return false;

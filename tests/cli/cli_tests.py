@@ -425,7 +425,7 @@ def huge_page_malloc_expected(env, input_bytes):
     """True or False where the tool's start-up conditions decide clearly; None where free memory
     is too close to its 2 GB threshold to tell from here (it moves between the two checks)."""
     env = {**os.environ, **env}
-    if input_bytes < 4 << 20:  # a small face is not worth loading the libraries twice
+    if input_bytes < 256 << 10:  # a small face is not worth a second process start
         return False
     if env.get("WEFM_HUGE_PAGES") == "0" or env.get("LD_PRELOAD"):
         return False
@@ -450,7 +450,7 @@ def huge_page_malloc_expected(env, input_bytes):
 def case_huge_page_malloc(tmp):
     # Starting again with huge-page malloc changes where memory comes from, never the result: the
     # UV OBJ is byte-identical with and without it, and the report says which way each run went.
-    # The same small patch as it is and padded with comment lines past the 4 MB below which the
+    # The same small patch as it is and padded with comment lines past the 256 KB below which the
     # tool does not start again (the size of the files it reads is its measure of the face).
     V, T = meshes.patch()
     small = os.path.join(tmp, "p.obj")
@@ -458,7 +458,8 @@ def case_huge_page_malloc(tmp):
     big = os.path.join(tmp, "p_padded.obj")
     with open(small) as f, open(big, "w") as g:
         g.write(f.read())
-        g.write(("# padding" + " " * 90 + "\n") * (42 * 1024 + 1))
+        g.write(("# padding" + " " * 90 + "\n") * (2621 + 1))
+    check(os.path.getsize(small) < 256 << 10 <= os.path.getsize(big), "the padded patch straddles the threshold")
     for src in (small, big):
         outs = {}
         size = os.path.getsize(src)
