@@ -126,6 +126,41 @@ TEST_CASE("threads with their own mesh handles and their own error messages") {
   CHECK(bad.load() == 0);
 }
 
+TEST_CASE("one mesh handle read by many threads at once (wefm.h: a wefm_mesh never changes)") {
+  const Arrays a = flat(12);
+  wefm_mesh* m = nullptr;
+  REQUIRE(wefm_mesh_create(a.nv(), a.xyz.data(), a.nt(), a.tri.data(), &m) == WEFM_OK);
+  wefm_mesh_info ref;
+  wefm_mesh_info_init(&ref);
+  REQUIRE(wefm_mesh_get_info(m, &ref) == WEFM_OK);
+  std::atomic<int> bad{0};
+  std::vector<std::thread> pool;
+  for (int k = 0; k < 6; ++k)
+    pool.emplace_back([&, k] {
+      for (int r = 0; r < 4; ++r) {
+        wefm_mesh_retain(m);
+        if (k % 2 == 0) {  // the statistics and a copy of the arrays, as the `wefm` tool takes them
+          wefm_mesh_info info;
+          wefm_mesh_info_init(&info);
+          std::vector<double> xyz(static_cast<size_t>(3 * a.nv()));
+          int64_t n = 0;
+          if (wefm_mesh_get_info(m, &info) != WEFM_OK || info.triangles != ref.triangles || info.area != ref.area) bad.fetch_add(1);
+          if (wefm_mesh_get_vertices(m, xyz.data(), 3 * a.nv(), &n) != WEFM_OK || xyz != a.xyz) bad.fetch_add(1);
+        } else {  // a face built and solved from it meanwhile
+          wefm_face* f = nullptr;
+          wefm_face_create(&f);
+          if (wefm_face_set_mesh_from(f, m) != WEFM_OK || wefm_face_build(f) != WEFM_OK || wefm_face_solve(f) != WEFM_OK)
+            bad.fetch_add(1);
+          wefm_face_release(f);
+        }
+        wefm_mesh_release(m);
+      }
+    });
+  for (auto& t : pool) t.join();
+  wefm_mesh_release(m);
+  CHECK(bad.load() == 0);
+}
+
 namespace {
 
 struct CancelProbe {

@@ -34,8 +34,10 @@
  * Handles.     Opaque and reference counted (as Embree): *_create returns a handle with count 1,
  *              *_retain adds one, *_release drops one and frees at zero.
  * Threads.     Distinct handles may be used concurrently from different threads. One handle must not
- *              be used from two threads at once, with one exception: wefm_face_cancel() may be called
- *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another.
+ *              be used from two threads at once, with two exceptions: wefm_face_cancel() may be called
+ *              from any thread while wefm_face_solve()/wefm_face_mesh_domain() runs on another; and
+ *              a wefm_mesh, which nothing changes once created, may be read by any number of
+ *              threads at once (wefm_mesh_get_*, wefm_face_set_mesh_from, retain and release).
  *              With wefm_options.threads <= 1 the library starts no threads of its own; with more,
  *              a solve runs its coefficients, assembly, sparse factorisations (two groups of
  *              subtrees of the elimination tree at once), continuation passes (linearisation,
