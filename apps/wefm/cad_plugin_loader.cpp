@@ -23,10 +23,9 @@ std::string own_directory() {
 }
 
 std::vector<std::string> candidates() {
-  std::vector<std::string> c;
   if (const char* env = std::getenv("WEFM_CAD_PLUGIN"); env && *env) return {env};
   const std::string dir = own_directory();
-  c.push_back(dir + "/" + wefm_cad::kPluginFile);
+  std::vector<std::string> c{dir + "/" + wefm_cad::kPluginFile};
 #ifdef WEFM_CAD_PLUGIN_DIR
   c.push_back(dir + "/" + WEFM_CAD_PLUGIN_DIR + "/" + wefm_cad::kPluginFile);
 #endif
@@ -67,13 +66,17 @@ const wefm_cad::PluginApi* open_plugin(std::string& error) {
 
 }  // namespace
 
-const wefm_cad::PluginApi* cad_plugin(std::string& error) {
+bool load_cad_model_via_plugin(const std::string& path, const wefm_cad::TessellationSettings& settings,
+                               wefm_cad::CadModel& model, std::string& error) {
   static std::once_flag once;
   static const wefm_cad::PluginApi* api = nullptr;
   static std::string failure;
   std::call_once(once, [] { api = open_plugin(failure); });
-  if (!api) error = failure;
-  return api;
+  if (!api) {
+    error = failure;
+    return false;
+  }
+  return api->load_model(path, settings, model, error);
 }
 
 }  // namespace wefm_cli

@@ -8,7 +8,10 @@
 
 namespace wefm_cli {
 
-// The plugin's table, or null with `error` saying where it looked and why each place failed.
-const wefm_cad::PluginApi* cad_plugin(std::string& error);
+// wefm_cad::load_cad_model (cad_model.hpp) through the plugin. False with `error` when the model
+// cannot be read, or when the plugin cannot be opened (then `error` says where it looked and why
+// each place failed).
+bool load_cad_model_via_plugin(const std::string& path, const wefm_cad::TessellationSettings& settings,
+                               wefm_cad::CadModel& model, std::string& error);
 
 }  // namespace wefm_cli

@@ -237,13 +237,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   const std::string model_path = args.positionals[0];
   const auto t_start = Clock::now();
 
-  const wefm_cad::PluginApi* cad = cad_plugin(error);
-  if (!cad) {
-    std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return kExitIo;
-  }
   wefm_cad::CadModel model;
-  if (!cad->load_model(model_path, tess, model, error)) {
+  if (!load_cad_model_via_plugin(model_path, tess, model, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }

@@ -42,8 +42,9 @@ HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count)
   return he;
 }
 
-HalfEdgeLookup::HalfEdgeLookup(const std::vector<Tri>& triangles, Index vertex_count) : tris_(&triangles) {
-  start_.assign(static_cast<size_t>(vertex_count) + 1, 0);
+void HalfEdgeLookup::build() {
+  const std::vector<Tri>& triangles = *tris_;
+  start_.assign(static_cast<size_t>(vertex_count_) + 1, 0);
   for (const Tri& t : triangles)
     for (Index v : t) ++start_[static_cast<size_t>(v) + 1];
   for (size_t i = 1; i < start_.size(); ++i) start_[i] += start_[i - 1];
@@ -53,7 +54,8 @@ HalfEdgeLookup::HalfEdgeLookup(const std::vector<Tri>& triangles, Index vertex_c
     outgoing_[static_cast<size_t>(fill[static_cast<size_t>(triangles[static_cast<size_t>(h / 3)][h % 3])]++)] = h;
 }
 
-Index HalfEdgeLookup::find(Index a, Index b) const {
+Index HalfEdgeLookup::find(Index a, Index b) {
+  if (start_.empty()) build();
   if (a < 0 || b < 0 || static_cast<size_t>(a) + 1 >= start_.size()) return -1;
   for (Index k = start_[static_cast<size_t>(a)]; k < start_[static_cast<size_t>(a) + 1]; ++k) {
     const Index h = outgoing_[static_cast<size_t>(k)];

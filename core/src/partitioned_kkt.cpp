@@ -34,6 +34,13 @@ bool equilibrated_solve(const Eigen::MatrixXcd& M, const Eigen::VectorXcd& b, Ei
   return true;
 }
 
+// The constraints' right-hand sides: the rows', then 0 for eta's row.
+Eigen::VectorXcd constraint_rhs(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta) {
+  Eigen::VectorXcd d = Eigen::VectorXcd::Zero(static_cast<Index>(rows.size()) + (eta ? 1 : 0));
+  for (size_t r = 0; r < rows.size(); ++r) d[static_cast<Index>(r)] = rows[r].rhs;
+  return d;
+}
+
 }  // namespace
 
 void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::vector<Vec3>* points) {
@@ -225,11 +232,8 @@ void PartitionedKKT::cover(const std::vector<LinearRow>& rows, const Eigen::Vect
 
 PartitionedKKT::Unrefined PartitionedKKT::solve_unrefined(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta) {
   cover(rows, eta);
-  const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
-  Eigen::VectorXcd d(m);
-  for (Index r = 0; r < m; ++r) d[r] = r < static_cast<Index>(rows.size()) ? rows[static_cast<size_t>(r)].rhs : Complex(0, 0);
   Unrefined u;
-  u.z = eliminate(rows, eta, VectorXc::Zero(n_), d, u.lambda, true);
+  u.z = eliminate(rows, eta, VectorXc::Zero(n_), constraint_rhs(rows, eta), u.lambda, true);
   return u;
 }
 
@@ -247,8 +251,7 @@ VectorXc PartitionedKKT::refine(const std::vector<LinearRow>& rows, const Eigen:
 
 void PartitionedKKT::refine_in_place(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, VectorXc& z, Eigen::VectorXcd& lambda) {
   const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
-  Eigen::VectorXcd d(m);
-  for (Index r = 0; r < m; ++r) d[r] = r < static_cast<Index>(rows.size()) ? rows[static_cast<size_t>(r)].rhs : Complex(0, 0);
+  const Eigen::VectorXcd d = constraint_rhs(rows, eta);
   // The elimination is exact in exact arithmetic, but multipliers that should vanish pick up
   // rounding noise that K_PP^{-1} C^H amplifies; refining on the full KKT residual removes it.
   auto apply_c = [&](const VectorXc& zz) {

@@ -2,7 +2,6 @@
 #include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
-#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -22,7 +21,7 @@ std::uint64_t ukey(Index a, Index b) {
 Index tri_vertex(const TriMesh& m, Index corner) { return m.triangles[static_cast<size_t>(corner / 3)][corner % 3]; }
 
 // Interior facet edges to cut, as half-edges marked on both sides.
-std::vector<char> mark_cuts(const TriMesh& m, const HalfEdges& he, const HalfEdgeLookup& look,
+std::vector<char> mark_cuts(const TriMesh& m, const HalfEdges& he, HalfEdgeLookup& look,
                             const std::vector<std::pair<Index, Index>>& pairs, const std::string& what) {
   std::vector<char> cut(he.twin.size(), 0);
   const Index nv = static_cast<Index>(m.vertices.size());
@@ -57,13 +56,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
   Topology tp;
   tp.he = half_edges ? *half_edges : build_halfedges(m.triangles, static_cast<Index>(m.vertices.size()));
   const HalfEdges& he = tp.he;
-  // The directed-edge lookup is built only when something names facet edges (given edges, seams,
-  // repeated edges): a face derived from its boundary alone skips its 16 MB at 1M triangles.
-  std::optional<HalfEdgeLookup> lookup;
-  auto look = [&]() -> const HalfEdgeLookup& {
-    if (!lookup) lookup.emplace(m.triangles, static_cast<Index>(m.vertices.size()));
-    return *lookup;
-  };
+  HalfEdgeLookup look(m.triangles, static_cast<Index>(m.vertices.size()));
   const Index nh = static_cast<Index>(he.twin.size());
   const bool given = !spec.loops.empty();
   tp.derived = !given;
@@ -79,7 +72,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
       for (size_t j = 0; j < ch.size(); ++j) {
         if (ch[j] < 0 || ch[j] >= static_cast<Index>(m.vertices.size()))
           fail(Errc::invalid_topology, "edge " + to_string(e) + ": vertex index " + to_string(ch[j]) + " at position " + to_string(j) + " is out of range");
-        if (j && look().find(ch[j - 1], ch[j]) < 0 && look().find(ch[j], ch[j - 1]) < 0)
+        if (j && look.find(ch[j - 1], ch[j]) < 0 && look.find(ch[j], ch[j - 1]) < 0)
           fail(Errc::invalid_topology, "edge " + to_string(e) + " does not follow facet edges: vertices " + to_string(ch[j - 1]) + " and " + to_string(ch[j]) + " (positions " + to_string(j - 1) + ", " + to_string(j) + ") are not joined by a triangle edge");
       }
     }
@@ -103,8 +96,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
   } else {
     cut_pairs = spec.seams;
   }
-  std::vector<char> cut = cut_pairs.empty() ? std::vector<char>(static_cast<size_t>(nh), 0)
-                                            : mark_cuts(m, he, look(), cut_pairs, given ? "repeated edge facet" : "seam");
+  std::vector<char> cut = mark_cuts(m, he, look, cut_pairs, given ? "repeated edge facet" : "seam");
 
   // --- Vertex uses: corners joined across uncut interior edges ------------------------------------
   UnionFind uf(nh);
@@ -177,7 +169,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
         prev_end = ch.back();
         const bool repeated = fwd[static_cast<size_t>(u.edge)] == 1 && bwd[static_cast<size_t>(u.edge)] == 1;
         for (size_t j = 1; j < ch.size(); ++j) {
-          const Index h = look().find(ch[j - 1], ch[j]);
+          const Index h = look.find(ch[j - 1], ch[j]);
           if (h < 0)
             fail(Errc::invalid_topology, "loop " + to_string(l) + " runs the wrong way along edge " + to_string(u.edge) + " at facet edge (" + to_string(ch[j - 1]) + ", " + to_string(ch[j]) + "): the face must lie on the left of every loop");
           if (!repeated && he.twin[static_cast<size_t>(h)] >= 0)
@@ -334,7 +326,7 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
     r.side_a.assign(ch.size(), -1);
     r.side_b.assign(ch.size(), -1);
     for (size_t j = 0; j + 1 < ch.size(); ++j) {
-      const Index h = look().find(ch[j], ch[j + 1]);
+      const Index h = look.find(ch[j], ch[j + 1]);
       const Index g = h < 0 ? -1 : he.twin[static_cast<size_t>(h)];
       if (h < 0 || g < 0) fail(Errc::invalid_topology, "repeated edge " + to_string(e) + " is not interior at facet edge (" + to_string(ch[j]) + ", " + to_string(ch[j + 1]) + ")");
       if (r.side_a[j] < 0) r.side_a[j] = tp.corner_use[static_cast<size_t>(h)];
