@@ -46,7 +46,7 @@ std::vector<OptionSpec> solver_option_specs() {
       {"method", 0, "global|rollout", "global least squares or iterative roll-out", method_name(d.method), false},
       {"no-curvature-adjust", 0, "", "do not scale beta by Theta/2pi at interior uses",
        d.curvature_adjust ? "adjust" : "no adjust", false},
-      {"s-step", 0, "DS", "largest continuation step in s (0.001 <= DS <= 2)", num(d.s_step), false},
+      {"s-step", 0, "DS", "largest continuation step in s (0.001 <= DS <= 2); a step up by more than 1 is retaken in steps of 1 where Gauss-Newton cuts a step short", num(d.s_step), false},
       {"rho-tolerance", 0, "TOL", "end the last continuation step below this relative rho change (earlier steps at 10x)", num(d.rho_tolerance), false},
       {"max-rho-iterations", 0, "N", "Gauss-Newton iterations per s step before reporting non-convergence",
        std::to_string(d.max_rho_iterations), false},

@@ -95,6 +95,7 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
                      {"rho_iterations", r.rho_iterations},
                      {"rho_change", number(r.rho_change)},
                      {"iterative_iterations", r.iterative_iterations},
+                     {"abandoned_steps", r.abandoned_steps},
                      {"steps", steps}};
   j["counters"] = {{"symbolic_analyses", r.symbolic_analyses},
                    {"numeric_factorizations", r.numeric_factorizations},

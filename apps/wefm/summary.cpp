@@ -49,8 +49,10 @@ void print_summary(const std::string& input, const FaceOutcome& o) {
                 static_cast<long long>(r.boundary_intersections));
     std::printf("  distortion  area mean %.4g max %.4g   angle mean %.4g max %.4g\n", r.area_distortion_mean,
                 r.area_distortion_max, r.angle_distortion_mean, r.angle_distortion_max);
-    std::printf("  solve       %s method, s %.3g reached, %s, %d steps, %d Gauss-Newton iterations\n", method_name(r.method), r.s,
+    std::printf("  solve       %s method, s %.3g reached, %s, %d steps, %d Gauss-Newton iterations", method_name(r.method), r.s,
                 r.converged ? "converged" : "NOT converged", r.s_steps, r.rho_iterations);
+    if (r.abandoned_steps > 0) std::printf(" (%d step%s retaken in steps of 1)", r.abandoned_steps, r.abandoned_steps == 1 ? "" : "s");
+    std::printf("\n");
     std::printf("  time        %.3f s (read %.3f, solve %.3f of which factorisation %.3f, write %.3f)",
                 o.time.total, o.time.read, o.time.solve, r.time_factorization, o.time.write);
     if (r.peak_memory_mb > 0) std::printf(", peak memory %.1f MB", r.peak_memory_mb);

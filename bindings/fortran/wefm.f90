@@ -89,6 +89,7 @@ module wefm
     integer(c_int32_t) :: auto_cut_edges, auto_cut_uncut_kept
     real(c_double) :: auto_cut_length, auto_cut_other_score
     real(c_double) :: via_s, boundary_unwind_weight
+    integer(c_int32_t) :: abandoned_steps
   end type wefm_report
 
   type, bind(C) :: wefm_mesh_options

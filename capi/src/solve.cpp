@@ -150,6 +150,7 @@ WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* re
     r.auto_cut_other_score = s.auto_cut_other_score;
     r.via_s = s.via_s;
     r.boundary_unwind_weight = s.unwind_weight;
+    r.abandoned_steps = s.abandoned_steps;
     r.time_topology = s.time.topology;
     r.time_coefficients = s.time.coefficients;
     r.time_assembly = s.time.assembly;

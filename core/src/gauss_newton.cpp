@@ -901,6 +901,7 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
         accepted_sums_ = sums;
         accepted_sums_valid_ = true;
         energy_out = et;
+        last_full_ = attempt == 0 && t == 1.0;  // a step after raising the damping is not a full one either
         lambda_ = t == 1.0 ? std::max(lambda_ * 0.1, 1e-10) : lambda_;
         return change;
       }
@@ -908,6 +909,7 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     lambda_ *= 10;
   }
   energy_out = e0;
+  last_full_ = false;
   return 0.0;  // no decrease possible: at a minimum to working precision
 }
 

@@ -110,6 +110,8 @@ def check_report(path, n_vertices, n_triangles, obj_vt):
     check(r["angle_distortion_mean"] >= 1 - 1e-9, f"{path}: angle distortion below 1")
     check(r["counters"]["numeric_factorizations"] >= 1 and r["counters"]["solves"] >= 1, f"{path}: counters")
     check(r["timings"]["total"] >= 0 and r["iterations"]["s_steps"] >= 1, f"{path}: timings/iterations")
+    # At the default s = 1 no continuation step is longer than 1: none is tentative.
+    check(r["iterations"]["abandoned_steps"] == 0, f"{path}: abandoned steps at s = 1")
     check(abs(r["s"] - 1.0) < 1e-12, f"{path}: default s should be reached (1), got {r['s']}")
     return r
 

@@ -89,6 +89,7 @@ program struct_layout
   call at('wefm_report auto_cut_other_score', c_loc(r), c_loc(r%auto_cut_other_score))
   call at('wefm_report via_s', c_loc(r), c_loc(r%via_s))
   call at('wefm_report boundary_unwind_weight', c_loc(r), c_loc(r%boundary_unwind_weight))
+  call at('wefm_report abandoned_steps', c_loc(r), c_loc(r%abandoned_steps))
 
   print '(a,i0)', 'wefm_mesh_options sizeof ', c_sizeof(m)
   call at('wefm_mesh_options struct_size', c_loc(m), c_loc(m%struct_size))

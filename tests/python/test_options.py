@@ -4,7 +4,7 @@ import ctypes
 import pytest
 
 import wefm
-from conftest import cylinder
+from conftest import bumpy_patch, cylinder
 
 
 def test_defaults_are_the_library_defaults():
@@ -36,6 +36,16 @@ def test_solve_keywords_reach_the_library():
         report = f.solve(s=0.0, s_step=0.25)
         assert report.s == 0.0
         assert f.options.s_step == 0.25
+
+
+def test_continuation_steps_reach_the_report():
+    # By default s = 2 is one tentative step on a smooth face; steps of 1 take two. Neither is abandoned.
+    with wefm.Face(*bumpy_patch()) as f:
+        one = f.solve(s=2.0)
+        assert (one.s_steps, one.abandoned_steps) == (1, 0)
+        two = f.solve(s=2.0, s_step=1.0)
+        assert (two.s_steps, two.abandoned_steps) == (2, 0)
+        assert abs(one.score - two.score) < 1e-4
 
 
 def test_mesh_options_defaults():

@@ -142,6 +142,7 @@ class Report(ctypes.Structure):
         ("auto_cut_other_score", c_double),
         ("via_s", c_double),
         ("boundary_unwind_weight", c_double),
+        ("abandoned_steps", c_int32),
     ]
 
 

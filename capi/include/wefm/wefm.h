@@ -222,7 +222,9 @@ typedef struct wefm_options {
   int method;                /**< wefm_method. Default WEFM_METHOD_GLOBAL */
   int solver;                /**< wefm_solver. Default WEFM_SOLVER_AUTO */
   int default_edge_mode;     /**< wefm_edge_mode for repeated edges not set per edge. Default AUTO */
-  double s_step;             /**< largest continuation step in s (0.001 <= s_step <= 2). Default 1 */
+  double s_step;             /**< largest continuation step in s (0.001 <= s_step <= 2). A step up by more
+                                  than 1 is tentative: where Gauss-Newton cuts one of its steps short, it is
+                                  taken again in steps of 1 (wefm_report.abandoned_steps). Default 2 */
   double rho_tolerance;      /**< the last continuation step ends when max relative rho change < this (steps below the target s at 10x this). Default 1e-3 */
   int max_rho_iterations;    /**< Gauss-Newton iterations per s step; reaching it reports non-convergence. Default 50 */
   double rollout_tolerance;  /**< roll-out sweep stop: max move / mean edge < this. Default 1e-10 */
@@ -605,6 +607,9 @@ typedef struct wefm_report {
                                       layout came back down to it from s = 2 */
   double boundary_unwind_weight; /**< 0, or the boundary-term weight of the unwinding retry that gave this
                                       layout (see boundary_unwind: 10, or 30 where 10 was not enough) */
+  int32_t abandoned_steps;       /**< tentative continuation steps (longer than 1 in s, see s_step) given up
+                                      where Gauss-Newton cut a step short, and taken again in steps of 1;
+                                      their iterations count in rho_iterations, not in the step history */
 } wefm_report;
 
 /** Zero `report` and set struct_size = `struct_size` (the caller's sizeof); errors as wefm_options_init(). */

@@ -45,6 +45,7 @@ int main(void) {
   FIELD(wefm_report, auto_cut_edges); FIELD(wefm_report, auto_cut_uncut_kept);
   FIELD(wefm_report, auto_cut_length); FIELD(wefm_report, auto_cut_other_score);
   FIELD(wefm_report, via_s); FIELD(wefm_report, boundary_unwind_weight);
+  FIELD(wefm_report, abandoned_steps);
 
   SIZE(wefm_mesh_options);
   FIELD(wefm_mesh_options, struct_size); FIELD(wefm_mesh_options, type); FIELD(wefm_mesh_options, size);

@@ -32,6 +32,7 @@ struct SolveReport {
   bool converged = true;
   Method method = Method::Global;
   int s_steps = 0, rho_iterations = 0;
+  int abandoned_steps = 0;  // tentative continuation steps given up for shorter ones (their iterations count in rho_iterations)
   double rho_change = 0;
   FactorCounters counters;
   std::int64_t iterative_iterations = 0;

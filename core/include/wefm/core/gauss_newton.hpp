@@ -32,6 +32,7 @@ struct GaussNewtonReport {
   double rho_change = 0;  // max relative change of rho over the last step
   double energy = 0;
   bool converged = false;
+  bool cut = false;  // ended at a step cut short, with stop_at_cut set (see set_stop_at_cut)
 };
 
 class GaussNewton {
@@ -68,6 +69,32 @@ class GaussNewton {
 
   double energy(const VectorXc& z, double s) const;
 
+  // With `on`, run() stops at the first step that is not a full Gauss-Newton step (the flip bound
+  // or the line search cut it short) and reports `cut`: a tentative continuation step gives way to
+  // shorter ones there (core/src/flatten.cpp).
+  void set_stop_at_cut(bool on) { stop_at_cut_ = on; }
+
+  // What the iteration carries from one step to the next (damping, the factor's age), to start
+  // again from an earlier layout as if the steps since had not been taken. The factor itself is not
+  // saved: restoring marks it for refactorisation when it was saved unfactorised.
+  struct State {
+    double lambda = 0;
+    bool factored = false;
+    int last_pcg = 0, fresh_pcg = 0;
+    bool baseline_pending = false;
+  };
+  State state() const { return {lambda_, factored_, last_pcg_, fresh_pcg_, baseline_pending_}; }
+  // Only to a state saved before anything refactorised since: the factor's values are not restored.
+  void restore(const State& st) {
+    lambda_ = st.lambda;
+    factored_ = st.factored;
+    last_pcg_ = st.last_pcg;
+    fresh_pcg_ = st.fresh_pcg;
+    baseline_pending_ = st.baseline_pending;
+    units_valid_ = false;
+    accepted_sums_valid_ = false;
+  }
+
   // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists)
   // and writes the energy after it (E(a) = a^2 P - 2 a^(2-s) Q + a^(2-2s) R: no second pass).
   double rescale(VectorXc& z, double s, double& energy_after);
@@ -84,6 +111,11 @@ class GaussNewton {
     for (int it = 0; it < max_it; ++it) {
       check(it);
       rep.rho_change = step(z, s, rep.energy);
+      if (stop_at_cut_ && !last_full_) {
+        rep.iterations = it + 1;
+        rep.cut = true;
+        return rep;
+      }
       if (it == 0) {
         e_prev = last_e0_;  // the energy at the start, from the first linearisation
         std::fill(e_window, e_window + 5, e_prev);
@@ -204,6 +236,8 @@ class GaussNewton {
   ScaleSums accepted_sums_;  // at the layout the last line search accepted, until rescale uses them
   bool accepted_sums_valid_ = false;
   double lambda_ = 1e-6;
+  bool last_full_ = true;  // the last step went the whole Gauss-Newton direction at the damping it started with
+  bool stop_at_cut_ = false;
   bool factored_ = false;
   int last_pcg_ = 0;   // iterations of the last step's conjugate gradients
   int fresh_pcg_ = 0;  // the same, for the first step solved with the current factor

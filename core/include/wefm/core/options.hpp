@@ -23,7 +23,11 @@ struct Options {
   Method method = Method::Global;
   Backend backend = Backend::Auto;
   EdgeMode default_edge_mode = EdgeMode::Auto;
-  double s_step = 1.0;  // measured: Gauss-Newton gives the same layouts on the real sample as 0.25, in fewer factorisations
+  // Largest continuation step. A step up by more than 1 is tentative: where Gauss-Newton cuts one of
+  // its steps short it is taken again in steps of 1 (docs/SOLVER.md, "Steps"). Measured: steps of 1
+  // give the layouts of steps of 0.25 on the real sample in fewer factorisations; the tentative
+  // jump to s = 2 those of steps of 1, in fewer iterations on smooth faces.
+  double s_step = 2.0;
   double rho_tolerance = 1e-3;  // the last continuation step's; steps below the target s end at 10x it
   int max_rho_iterations = 50;  // Gauss-Newton iterations per step; a sphere with a small hole needs 30 at s = 1
   double rollout_tolerance = 1e-10;
