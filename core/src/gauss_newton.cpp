@@ -512,6 +512,7 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
     // float solve's rounding (it is [I -W; 0 I] diag(M_PP^-1, Sx^-1) [I 0; -W^H I]).
     chol_->keep_single_precision();
     factored_ = true;
+    ++refactorisations_;
     units_valid_ = false;
   };
   // Refactorise when the factor has gone stale (kRefactorExtra). A count, not a timing: results

@@ -75,19 +75,20 @@ class GaussNewton {
   void set_stop_at_cut(bool on) { stop_at_cut_ = on; }
 
   // What the iteration carries from one step to the next (damping, the factor's age), to start
-  // again from an earlier layout as if the steps since had not been taken. The factor itself is not
-  // saved: restoring marks it for refactorisation when it was saved unfactorised.
+  // again from an earlier layout as if the steps since had not been taken. The factor's values are
+  // not saved: when it was refactorised since, the next step refactorises it (at the start of a
+  // solve it is unfactorised anyway, and the restored run takes the very steps of the saved one).
   struct State {
     double lambda = 0;
     bool factored = false;
     int last_pcg = 0, fresh_pcg = 0;
     bool baseline_pending = false;
+    std::int64_t refactorisations = 0;
   };
-  State state() const { return {lambda_, factored_, last_pcg_, fresh_pcg_, baseline_pending_}; }
-  // Only to a state saved before anything refactorised since: the factor's values are not restored.
+  State state() const { return {lambda_, factored_, last_pcg_, fresh_pcg_, baseline_pending_, refactorisations_}; }
   void restore(const State& st) {
     lambda_ = st.lambda;
-    factored_ = st.factored;
+    factored_ = st.factored && refactorisations_ == st.refactorisations;
     last_pcg_ = st.last_pcg;
     fresh_pcg_ = st.fresh_pcg;
     baseline_pending_ = st.baseline_pending;
@@ -239,6 +240,7 @@ class GaussNewton {
   bool last_full_ = true;  // the last step went the whole Gauss-Newton direction at the damping it started with
   bool stop_at_cut_ = false;
   bool factored_ = false;
+  std::int64_t refactorisations_ = 0;
   int last_pcg_ = 0;   // iterations of the last step's conjugate gradients
   int fresh_pcg_ = 0;  // the same, for the first step solved with the current factor
   bool baseline_pending_ = false;  // refactorised mid-step: the next step sets fresh_pcg_
