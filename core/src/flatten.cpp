@@ -455,7 +455,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     }
     double s_cur = 0;
     double shown = 0.4;  // progress only moves forward, also when a tentative step gives way
-    for (size_t k = 0; k < schedule.size(); ++k) {
+    for (size_t k = 0; k < schedule.size();) {
       const double s_next = schedule[k];
       // A step up by more than 1 is tentative: it is kept only if every Gauss-Newton step on the
       // way is a full one. Where one is cut short (the flip bound or the line search), the step is
@@ -480,16 +480,16 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
         stage.check(shown, "continuation");
       });
       gn.set_stop_at_cut(false);
+      rep.rho_iterations += gr.iterations;  // an abandoned step's too, though the history does not show it
       if (tentative && (gr.cut || !gr.converged)) {
-        rep.rho_iterations += gr.iterations;  // spent, though no step of the history shows them
         ++rep.abandoned_steps;
         z = z_start;
         gn.restore(gn_start);
-        std::vector<double> shorter;
-        for (double sv = s_cur; sv < s_next - 1e-12;) shorter.push_back(sv = std::min(s_next, sv + 1.0));
-        schedule.erase(schedule.begin() + static_cast<std::ptrdiff_t>(k));
-        schedule.insert(schedule.begin() + static_cast<std::ptrdiff_t>(k), shorter.begin(), shorter.end());
-        --k;
+        // The steps of 1 below s_next go in before it, and the loop takes the first of them next
+        // (at least one: the step was longer than 1).
+        std::vector<double> below{s_cur + 1.0};
+        for (double sv = s_cur + 2.0; sv < s_next - 1e-12; sv += 1.0) below.push_back(sv);
+        schedule.insert(schedule.begin() + static_cast<std::ptrdiff_t>(k), below.begin(), below.end());
         continue;
       }
       StepInfo step;
@@ -497,7 +497,6 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       step.iterations = gr.iterations;
       step.rho_change = gr.rho_change;
       step.converged = gr.converged;
-      rep.rho_iterations += gr.iterations;
       if (!gr.converged) rep.converged = false;
       const std::pair<int, double> rank = rank_of(z, s_next);
       if (rank >= best_rank) {
@@ -509,6 +508,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
       ++rep.s_steps;
       rep.rho_change = step.rho_change;
       s_cur = s_next;
+      ++k;
     }
     recentre(z);
     recentre(best_z);

@@ -76,8 +76,9 @@ class GaussNewton {
 
   // What the iteration carries from one step to the next (damping, the factor's age), to start
   // again from an earlier layout as if the steps since had not been taken. The factor's values are
-  // not saved: when it was refactorised since, the next step refactorises it (at the start of a
-  // solve it is unfactorised anyway, and the restored run takes the very steps of the saved one).
+  // not saved: when it was refactorised since, the next step refactorises it (which also renews
+  // what is cached with it); at the start of a solve it is unfactorised anyway, and the restored
+  // run takes the very steps of the saved one.
   struct State {
     double lambda = 0;
     bool factored = false;
@@ -92,8 +93,6 @@ class GaussNewton {
     last_pcg_ = st.last_pcg;
     fresh_pcg_ = st.fresh_pcg;
     baseline_pending_ = st.baseline_pending;
-    units_valid_ = false;
-    accepted_sums_valid_ = false;
   }
 
   // Scales z about its centroid by the local minimiser of E(a z); returns a (1 when none exists)
