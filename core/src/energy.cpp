@@ -142,11 +142,14 @@ SpMatC assemble_surface_operator(const Topology& tp, const Coefficients& c, cons
   return A;
 }
 
-SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Coefficients& c, double mu, double unwind) {
+namespace {
+
+// With c null: the pattern only (every value 1), from the mesh and the loops alone.
+SpMatC boundary_operator(const TriMesh& m, const Topology& tp, const Coefficients* c, double mu, double unwind) {
   const Index n = tp.use_count;
   std::vector<Eigen::Triplet<Complex>> trip;
   Index row = 0;
-  const double inv = 1.0 / c.length_scale;
+  const double inv = c ? 1.0 / c->length_scale : 1.0;
   auto pos = [&](Index u) -> const Vec3& { return m.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])]; };
   for (size_t d = 0; d < tp.loop_uses.size(); ++d) {
     const auto& lu = tp.loop_uses[d];
@@ -160,7 +163,7 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
     std::vector<double> turn(nl);
     double sum = 0, len = 0;
     for (size_t j = 0; j < nl; ++j) {
-      turn[j] = kPi - c.use_angle[static_cast<size_t>(lu[j])];
+      turn[j] = c ? kPi - c->use_angle[static_cast<size_t>(lu[j])] : 0.0;
       if (unwind < 1.0 && std::abs(turn[j]) < kPi / 6) turn[j] *= unwind;
       sum += turn[j];
       len += 0.5 * (seg[(j + nl - 1) % nl] + seg[j]);
@@ -178,10 +181,10 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
       // p = 0 exactly when the UV corner turns by the goal and its two segments have the 3D ratio.
       const double phi = 0.5 * (turn[j] + per_length * lbar);
       const double scale = std::sqrt(mu / lbar);
-      const Complex cm = scale * (Lp / lbar) * std::polar(1.0, phi), cp = scale * (Lm / lbar) * std::polar(1.0, -phi);
+      const Complex cm = c ? scale * (Lp / lbar) * std::polar(1.0, phi) : Complex(1, 0), cp = c ? scale * (Lm / lbar) * std::polar(1.0, -phi) : Complex(1, 0);
       trip.emplace_back(row, up, cm);
       trip.emplace_back(row, un, cp);
-      trip.emplace_back(row, u, -(cm + cp));
+      trip.emplace_back(row, u, c ? -(cm + cp) : Complex(1, 0));
       ++row;
     }
   }
@@ -189,6 +192,14 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
   B.setFromTriplets(trip.begin(), trip.end());
   return B;
 }
+
+}  // namespace
+
+SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Coefficients& c, double mu, double unwind) {
+  return boundary_operator(m, tp, &c, mu, unwind);
+}
+
+SpMatC boundary_operator_pattern(const TriMesh& m, const Topology& tp, double mu) { return boundary_operator(m, tp, nullptr, mu, 1.0); }
 
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads) {
   // K = A^H A + B^H B column by column (Gustavson): K(:, j) = sum over the rows r of column j of

@@ -89,6 +89,20 @@ EnergyAssembler::EnergyAssembler(const Topology& tp, const SpMatC* B, int thread
       1);
 }
 
+bool EnergyAssembler::set_boundary(const SpMatC* B) {
+  SpMatC btb;
+  if (B && B->nonZeros()) {
+    btb = SpMatC(B->adjoint()) * (*B);
+    btb.makeCompressed();
+  }
+  const bool same = btb.nonZeros() == btb_.nonZeros() && (btb.nonZeros() == 0 || (btb.cols() == btb_.cols() &&
+                    std::equal(btb.outerIndexPtr(), btb.outerIndexPtr() + btb.cols() + 1, btb_.outerIndexPtr()) &&
+                    std::equal(btb.innerIndexPtr(), btb.innerIndexPtr() + btb.nonZeros(), btb_.innerIndexPtr())));
+  if (!same) return false;
+  if (btb.nonZeros()) std::copy(btb.valuePtr(), btb.valuePtr() + btb.nonZeros(), btb_.valuePtr());
+  return true;
+}
+
 namespace {
 
 // Column `col` of triangle t3/3's block: entry r = sum over its half-edges j of

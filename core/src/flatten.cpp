@@ -9,10 +9,13 @@
 #include <utility>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
+#include <system_error>
 #include <tuple>
 
 #include "wefm/core/caller_rows.hpp"
+#include "wefm/core/early_analysis.hpp"
 #include "wefm/core/energy.hpp"
 #include "wefm/core/error.hpp"
 #include "wefm/core/gauge.hpp"
@@ -81,9 +84,44 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   rep.method = opt.method;
   stage.check(0.0, "coefficients");
 
-  double t0 = now();
   const int threads = std::max(1, opt.threads);
-  const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta, threads);
+  double t0 = 0;
+  const double mu = in.boundary_weight_override > 0 ? in.boundary_weight_override : opt.boundary_weight;
+  PartitionedKKT kkt(opt.backend);
+  kkt.factor().set_threads(opt.threads);
+  // memory_limit_mb: the factor's values (CHOLMOD's xsize from the analysis) plus 0.75 KB per
+  // triangle for the rest. Measured peaks of whole `wefm flatten` runs, 1M-triangle disk (factor
+  // 34.1M entries) and plate (26.7M), s = 0, 1, 2: 0.59-0.85 KB per triangle besides the factor,
+  // so the estimate (disk 1295 MB, plate 1177 MB) is within -8% .. +16% of the peak there.
+  const double other_mb = 0.75e-3 * static_cast<double>(mesh.triangles.size());
+  kkt.factor().set_memory_limit(opt.memory_limit_mb, other_mb);
+  // The split uses and the points for the ordering, should minimum degree's fill be poor
+  // (nested_dissection.hpp): the global method's.
+  const bool global = opt.method == Method::Global;
+  const auto split = global ? far_pair_3d(mesh, tp, tp.outer_loop) : std::pair<Index, Index>{0, 0};
+  std::vector<Vec3> at(global ? static_cast<size_t>(tp.use_count) : 0);
+  for (size_t u = 0; u < at.size(); ++u) at[u] = mesh.vertices[static_cast<size_t>(tp.use_vertex[u])];
+  // K's analysis side by side with the coefficients and K's values (early_analysis.hpp). Measured
+  // at 1M triangles, s = 0: see docs/PERFORMANCE.md.
+  std::unique_ptr<EnergyAssembler> assembler;
+  std::optional<EarlyAnalysis> ahead;
+  if (global && opt.residual == Residual::PerHalfEdge && early_analysis_pays(tp.use_count, threads)) {
+    t0 = now();
+    const SpMatC b_pattern = boundary_operator_pattern(mesh, tp, mu);
+    assembler = std::make_unique<EnergyAssembler>(tp, b_pattern.nonZeros() ? &b_pattern : nullptr, threads);
+    rep.time.assembly += now() - t0;
+    try {
+      ahead.emplace(*assembler, kkt, split.first, split.second, &at);
+    } catch (const std::system_error&) {
+      ahead.reset();  // no thread to be had: the analysis runs in turn below
+    }
+  }
+
+  t0 = now();
+  // While the analysis runs, one thread fewer here: it is the longer of the two (the same bits for
+  // any thread count).
+  const int setup_threads = ahead ? std::max(1, threads - 1) : threads;
+  const Coefficients coef = compute_coefficients(mesh, tp, opt.curvature_adjust, opt.min_beta, setup_threads);
   rep.time.coefficients = now() - t0;
   rep.degenerate_triangles = coef.degenerate_triangles;
   if (coef.degenerate_triangles == static_cast<Index>(mesh.triangles.size())) {
@@ -162,31 +200,31 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   // --- Conformal solve with the two-step gauge --------------------------------------------------
   stage.check(0.05, "assembly");
   t0 = now();
-  const SpMatC B = assemble_boundary_operator(mesh, tp, coef, in.boundary_weight_override > 0 ? in.boundary_weight_override : opt.boundary_weight,
-                                               in.unwind);
+  const SpMatC B = assemble_boundary_operator(mesh, tp, coef, mu, in.unwind);
   const SpMatC* Bp = B.rows() ? &B : nullptr;
   std::vector<double> rho;  // empty: s = 0
   // K straight into its pattern, without the surface operator A (K = A^H A + B^H B): at 1M
   // triangles A cost 180 MB and two passes.
-  SpMatC K = assemble_energy(tp, coef, compute_sigma(coef, rho, 0.0, threads), opt.k, opt.residual, Bp, threads);
+  if (ahead) ahead->copied();
+  const bool foreseen = assembler && assembler->set_boundary(Bp);  // B's pattern is the one analysed
+  const bool analysed = ahead && foreseen;
+  SpMatC K = foreseen ? assembler->assemble(compute_weights(tp, coef, opt.k, setup_threads), compute_sigma(coef, rho, 0.0, setup_threads), setup_threads)
+                      : assemble_energy(tp, coef, compute_sigma(coef, rho, 0.0, threads), opt.k, opt.residual, Bp, threads);
+  assembler.reset();
   rep.time.assembly += now() - t0;
   const auto seg = longest_loop_segment(tp, mesh, tp.outer_loop);
-  const auto split = far_pair_3d(mesh, tp, tp.outer_loop);
-  PartitionedKKT kkt(opt.backend);
-  kkt.factor().set_threads(opt.threads);
-  // memory_limit_mb: the factor's values (CHOLMOD's xsize from the analysis) plus 0.75 KB per
-  // triangle for the rest. Measured peaks of whole `wefm flatten` runs, 1M-triangle disk (factor
-  // 34.1M entries) and plate (26.7M), s = 0, 1, 2: 0.59-0.85 KB per triangle besides the factor,
-  // so the estimate (disk 1295 MB, plate 1177 MB) is within -8% .. +16% of the peak there.
-  const double other_mb = 0.75e-3 * static_cast<double>(mesh.triangles.size());
-  kkt.factor().set_memory_limit(opt.memory_limit_mb, other_mb);
   stage.check(0.1, "factorise");
-  {
-    // Points for the ordering, should minimum degree's fill be poor (nested_dissection.hpp).
-    std::vector<Vec3> at(static_cast<size_t>(tp.use_count));
-    for (Index u = 0; u < tp.use_count; ++u) at[static_cast<size_t>(u)] = mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])];
-    kkt.set_matrix(K, split.first, split.second, &at);
+  if (ahead) {
+    const double tw = now();
+    ahead->wait();
+    // The analysis overlapped the coefficients and assembly: the solve's timers count only the
+    // time it waited for it, so that they still add up to its wall time.
+    kkt.counters().time_analysis = now() - tw;
   }
+  // Analysed already, unless B's pattern was not the one foreseen (then it is analysed here).
+  kkt.set_matrix(K, split.first, split.second, analysed ? nullptr : &at);
+  ahead.reset();
+  std::vector<Vec3>().swap(at);
 
   LinearRow vec, pin;
   pin.terms = {{seg.first, 1.0}};

@@ -43,10 +43,9 @@ Eigen::VectorXcd constraint_rhs(const std::vector<LinearRow>& rows, const Eigen:
 
 }  // namespace
 
-void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::vector<Vec3>* points) {
-  n_ = static_cast<Index>(K.rows());
+void PartitionedKKT::split(Index n, const int* outer, const int* inner, const Complex* val, Index x0, Index x1) {
+  n_ = n;
   if (x0 == x1 || x0 < 0 || x1 < 0 || x0 >= n_ || x1 >= n_) fail(Errc::internal, "partition uses out of range");
-  if (!K.isCompressed()) fail(Errc::internal, "the energy matrix is not compressed");
   x_[0] = x0;
   x_[1] = x1;
   p_of_.assign(static_cast<size_t>(n_), -1);
@@ -57,13 +56,10 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::
   // K_PP is K without the rows and columns x0, x1: a filter over K's columns. The renumbering keeps
   // the order, so each column stays sorted (no triplets and no sort: at 1M triangles those were
   // 84 MB of triplets and two more copies of the matrix).
-  const int* outer = K.outerIndexPtr();
-  const int* inner = K.innerIndexPtr();
-  const Complex* val = K.valuePtr();
   std::vector<Eigen::Triplet<Complex>> px;
   K_XX_.setZero();
   Kpp_.resize(np, np);
-  Kpp_.resizeNonZeros(K.nonZeros());
+  Kpp_.resizeNonZeros(outer[n_]);
   advise_huge_pages_sparse(Kpp_);
   int* po = Kpp_.outerIndexPtr();
   int* pi = Kpp_.innerIndexPtr();
@@ -75,13 +71,16 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::
     for (int q = outer[c]; q < outer[c + 1]; ++q) {
       const Index r = inner[q];
       const Index pr = p_of_[static_cast<size_t>(r)];
+      const Complex v = val ? val[q] : Complex(0, 0);
       if (pr >= 0 && pc >= 0) {
         pi[nz] = static_cast<int>(pr);
-        pv[nz++] = val[q];
+        pv[nz++] = v;
+      } else if (!val) {
+        continue;
       } else if (pr >= 0) {
-        px.emplace_back(pr, c == x0 ? 0 : 1, val[q]);
+        px.emplace_back(pr, c == x0 ? 0 : 1, v);
       } else if (pc < 0) {
-        K_XX_(r == x0 ? 0 : 1, c == x0 ? 0 : 1) = val[q];
+        K_XX_(r == x0 ? 0 : 1, c == x0 ? 0 : 1) = v;
       }
     }
   }
@@ -89,12 +88,27 @@ void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::
   Kpp_.resizeNonZeros(static_cast<Index>(nz));
   K_PX_.resize(np, 2);
   K_PX_.setFromTriplets(px.begin(), px.end());
-  if (points && points->size() == static_cast<size_t>(n_)) {
-    std::vector<Vec3> pp(static_cast<size_t>(np));
-    for (Index u = 0; u < n_; ++u)
-      if (p_of_[static_cast<size_t>(u)] >= 0) pp[static_cast<size_t>(p_of_[static_cast<size_t>(u)])] = (*points)[static_cast<size_t>(u)];
-    chol_.set_ordering_points(std::move(pp));
-  }
+}
+
+void PartitionedKKT::set_points(const std::vector<Vec3>* points) {
+  if (!points || points->size() != static_cast<size_t>(n_)) return;
+  std::vector<Vec3> pp(static_cast<size_t>(n_ - 2));
+  for (Index u = 0; u < n_; ++u)
+    if (p_of_[static_cast<size_t>(u)] >= 0) pp[static_cast<size_t>(p_of_[static_cast<size_t>(u)])] = (*points)[static_cast<size_t>(u)];
+  chol_.set_ordering_points(std::move(pp));
+}
+
+void PartitionedKKT::set_pattern(Index n, const int* outer, const int* inner, Index x0, Index x1, const std::vector<Vec3>* points) {
+  split(n, outer, inner, nullptr, x0, x1);
+  set_points(points);
+}
+
+void PartitionedKKT::analyse_pattern() { chol_.analyze(Kpp_); }
+
+void PartitionedKKT::set_matrix(const SpMatC& K, Index x0, Index x1, const std::vector<Vec3>* points) {
+  if (!K.isCompressed()) fail(Errc::internal, "the energy matrix is not compressed");
+  split(static_cast<Index>(K.rows()), K.outerIndexPtr(), K.innerIndexPtr(), K.valuePtr(), x0, x1);
+  set_points(points);
   chol_.factorize(Kpp_);
   kscale_ = K.diagonal().cwiseAbs().maxCoeff();
   cache_valid_ = false;

@@ -201,39 +201,70 @@ template <class Scalar>
 SparseCholeskyT<Scalar>::~SparseCholeskyT() = default;
 
 template <class Scalar>
-void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
+bool SparseCholeskyT<Scalar>::analyze(const Matrix& K) {
   const bool same = K.rows() == n_ && K.isCompressed() &&
                     pattern_outer_.size() == static_cast<size_t>(K.outerSize() + 1) &&
                     std::equal(pattern_outer_.begin(), pattern_outer_.end(), K.outerIndexPtr()) &&
                     std::equal(pattern_inner_.begin(), pattern_inner_.end(), K.innerIndexPtr());
+  if (same) return false;
   const SerialOpenMP serial;
-  impl_->single.clear();  // its values are CHOLMOD's, which the factorisation overwrites
-  if (!same) {
-    impl_->refactor.clear();
-    impl_->numeric_done = false;
-    const double t0 = now();
-    n_ = static_cast<Index>(K.rows());
-    pattern_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1);
-    pattern_inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
+  impl_->single.clear();  // its values are CHOLMOD's, which a new analysis drops
+  impl_->refactor.clear();
+  impl_->numeric_done = false;
+  const double t0 = now();
+  n_ = static_cast<Index>(K.rows());
+  pattern_outer_.assign(K.outerIndexPtr(), K.outerIndexPtr() + K.outerSize() + 1);
+  pattern_inner_.assign(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros());
 #ifdef WEFM_HAVE_CHOLMOD
-    if (impl_->use_cholmod) {
-      analyze_ordered(impl_->cholmod, K, points_);
-      std::vector<Vec3>().swap(points_);
-    } else
+  if (impl_->use_cholmod) {
+    analyze_ordered(impl_->cholmod, K, points_);
+    std::vector<Vec3>().swap(points_);
+  } else
 #endif
-      impl_->ldlt.analyzePattern(K);
-    ++counters_.analyses;
-    counters_.time_analysis += now() - t0;
-    if (limit_mb_ > 0) {
-      const double mb = other_mb_ + 1e-6 * static_cast<double>(sizeof(Scalar)) * static_cast<double>(factor_entries());
-      if (mb > limit_mb_) {
-        pattern_outer_.clear();  // analyse again next time: the limit may have been raised
-        fail(Errc::out_of_memory, "the solve is estimated at " + std::to_string(static_cast<long long>(mb + 0.5)) +
-                                      " MB (factor " + std::to_string(factor_entries()) + " entries), above memory_limit_mb " +
-                                      std::to_string(static_cast<long long>(limit_mb_)));
-      }
+    impl_->ldlt.analyzePattern(K);
+  ++counters_.analyses;
+  counters_.time_analysis += now() - t0;
+  if (limit_mb_ > 0) {
+    const double mb = other_mb_ + 1e-6 * static_cast<double>(sizeof(Scalar)) * static_cast<double>(factor_entries());
+    if (mb > limit_mb_) {
+      pattern_outer_.clear();  // analyse again next time: the limit may have been raised
+      fail(Errc::out_of_memory, "the solve is estimated at " + std::to_string(static_cast<long long>(mb + 0.5)) +
+                                    " MB (factor " + std::to_string(factor_entries()) + " entries), above memory_limit_mb " +
+                                    std::to_string(static_cast<long long>(limit_mb_)));
     }
   }
+  // The own factorisation's map of K's entries needs only the pattern: made here, so that an
+  // analysis run ahead of the values (flatten's early analysis) takes it along.
+  const double t1 = now();
+  prepare_own_refactor(K);
+  counters_.time_analysis += now() - t1;
+  return true;
+}
+
+template <class Scalar>
+void SparseCholeskyT<Scalar>::prepare_own_refactor(const Matrix& K) {
+#ifdef WEFM_HAVE_CHOLMOD
+  if constexpr (std::is_same_v<Scalar, Complex>) {
+    if (!impl_->use_cholmod || !g_own_refactor.load() || impl_->refactor.ready()) return;
+    cholmod_factor* L = impl_->cholmod.factor();
+    if (!impl_->numeric_done && L && L->is_super && L->xtype == CHOLMOD_PATTERN) {
+      // The symbolic factor's values laid out (and allocated, not yet touched) as CHOLMOD's own
+      // numeric factorisation would, so that the first factorisation is the own one too.
+      cholmod_change_factor(CHOLMOD_COMPLEX, 1, 1, 1, 1, L, &impl_->cholmod.cholmod());
+    }
+    SupernodalView v;
+    if (supernodal_view(L, v)) impl_->refactor.prepare(v, K);
+  }
+#else
+  (void)K;
+#endif
+}
+
+template <class Scalar>
+void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
+  analyze(K);
+  const SerialOpenMP serial;
+  impl_->single.clear();  // its values are CHOLMOD's, which the factorisation overwrites
   const double t0 = now();
   Eigen::ComputationInfo info;
 #ifdef WEFM_HAVE_CHOLMOD
@@ -243,17 +274,8 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
     // another kind).
     bool own = false;
     if constexpr (std::is_same_v<Scalar, Complex>) {
-      cholmod_factor* L = impl_->cholmod.factor();
-      if (!impl_->numeric_done && g_own_refactor.load() && L && L->is_super && L->xtype == CHOLMOD_PATTERN) {
-        // The symbolic factor's values laid out (and allocated) as CHOLMOD's own numeric
-        // factorisation would, so that the first factorisation is the own one too.
-        cholmod_change_factor(CHOLMOD_COMPLEX, 1, 1, 1, 1, L, &impl_->cholmod.cholmod());
-      }
-      SupernodalView v;
-      if (g_own_refactor.load() && supernodal_view(L, v)) {
-        if (!impl_->refactor.ready()) impl_->refactor.prepare(v, K);
-        own = impl_->refactor.ready();
-      }
+      prepare_own_refactor(K);  // when switched on since the analysis
+      own = g_own_refactor.load() && impl_->refactor.ready();
       if (own) {
         info = impl_->refactor.factorize(K, threads_) ? Eigen::Success : Eigen::NumericalIssue;
         if (info == Eigen::Success) impl_->cholmod.mark_factorized();

@@ -7,6 +7,7 @@
 #include "meshes.hpp"
 #include "solve_helpers.hpp"
 #include "wefm/core/coefficients.hpp"
+#include "wefm/core/early_analysis.hpp"
 #include "wefm/core/energy.hpp"
 #include "wefm/core/float_supernodal_solve.hpp"
 
@@ -83,7 +84,8 @@ TEST_CASE("coefficients and assembly are bit-identical for 1 and 4 threads") {
 }
 
 TEST_CASE("a whole solve through the continuation is bit-identical for 1 and 3 threads") {
-  // The continuation's linearisation (two halves of the uses), energy passes (fixed blocks), CG
+  // The analysis run ahead of the coefficients on a thread of its own (early_analysis.hpp), the
+  // continuation's linearisation (two halves of the uses), energy passes (fixed blocks), CG
   // products (one row per output) and the float preconditioner's split solves; the factorisation
   // runs on one thread whatever the count. Every factor takes the float path here.
   set_float_factor_min_entries(0);
@@ -91,6 +93,8 @@ TEST_CASE("a whole solve through the continuation is bit-identical for 1 and 3 t
     CAPTURE(cs.name);
     Options o = test::with_s(1.0);
     const std::vector<std::pair<Index, Index>>& seams = cs.spec.seams;
+    REQUIRE(early_analysis_pays(static_cast<Index>(cs.mesh.vertices.size()), 3));
+    REQUIRE_FALSE(early_analysis_pays(static_cast<Index>(cs.mesh.vertices.size()), 1));
     o.threads = 1;
     const FlattenResult one = test::solve(cs.mesh, o, seams);
     CHECK(one.report.quality.flips == 0);
@@ -102,6 +106,10 @@ TEST_CASE("a whole solve through the continuation is bit-identical for 1 and 3 t
       REQUIRE(more.uv.size() == one.uv.size());
       CHECK(std::memcmp(more.uv.data(), one.uv.data(), sizeof(Complex) * static_cast<size_t>(one.uv.size())) == 0);
       CHECK(more.report.iterative_iterations == one.report.iterative_iterations);
+      // With threads the analysis ran ahead of K's values (early_analysis.hpp), on the pattern
+      // foreseen: no analysis more than with one thread.
+      CHECK(more.report.counters.analyses == one.report.counters.analyses);
+      CHECK(more.report.counters.factorizations == one.report.counters.factorizations);
     }
   }
   set_float_factor_min_entries(kFloatFactorMinEntries);

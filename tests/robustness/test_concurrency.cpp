@@ -93,6 +93,24 @@ TEST_CASE("8 threads solving their own faces repeatedly give the sequential resu
   CHECK(mismatches.load() == 0);
 }
 
+TEST_CASE("one face's solve on 2 threads (the analysis run ahead on a thread of its own) gives the 1-thread bits") {
+  // 151 x 151 vertices: above the size where the analysis runs beside the coefficients
+  // (core/include/wefm/core/early_analysis.hpp), with the boundary term on its loop.
+  Job j;
+  j.mesh = flat(150);
+  j.opt = options();
+  j.opt.s = 0;
+  j.opt.threads = 1;
+  const auto one = run(j);
+  REQUIRE(one.first == WEFM_OK);
+  j.opt.threads = 2;
+  for (int r = 0; r < 2; ++r) {
+    const auto two = run(j);
+    CHECK(two.first == WEFM_OK);
+    CHECK(bitwise_equal(two.second, one.second));
+  }
+}
+
 TEST_CASE("threads with their own mesh handles and their own error messages") {
   const Arrays a = flat(6);
   std::atomic<int> bad{0};

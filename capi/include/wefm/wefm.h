@@ -42,8 +42,10 @@
  *              a solve runs its coefficients, assembly, sparse factorisations (two groups of
  *              subtrees of the elimination tree at once), continuation passes (linearisation,
  *              energy, products) and the preconditioner's triangular solves on that many
- *              short-lived threads (joined before it returns). Work is cut into pieces fixed by the
- *              face alone and every sum runs in a fixed order, so layouts are bit-identical for any
+ *              short-lived threads (joined before it returns); on faces of 20,000 vertex uses and
+ *              more the global method's symbolic analysis takes one of them, beside the
+ *              coefficients and assembly on the others. Work is cut into pieces fixed by the face
+ *              alone and every sum runs in a fixed order, so layouts are bit-identical for any
  *              thread count. The BLAS calls run on the calling threads: a solve sets the OpenBLAS
  *              pool to 1 thread, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether),
  *              and where CHOLMOD still factorises, its OpenMP loops run on the solving thread
@@ -591,7 +593,9 @@ typedef struct wefm_report {
   int32_t auto_cut;              /**< non-zero if the solve cut the face itself */
   int32_t degenerate_triangles;  /**< triangles regularised by min_beta */
   double time_topology, time_coefficients, time_assembly, time_analysis, time_factorization,
-         time_solve, time_continuation, time_quality, time_total; /**< seconds */
+         time_solve, time_continuation, time_quality, time_total; /**< seconds, wall. Where the analysis
+                                      runs beside the coefficients and assembly (see Threads),
+                                      time_analysis is only the time the solve waited for it */
   double peak_memory_mb;         /**< process peak resident set size after the solve (0 if unknown) */
   int32_t min_beta_raised;       /**< non-zero: the first layout had flips or boundary overlaps and this
                                       one, solved again with min_beta 0.05, scored better */

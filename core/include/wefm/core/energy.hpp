@@ -28,6 +28,8 @@ SpMatC assemble_surface_operator(const Topology& topo, const Coefficients& c, co
 // the goal turning angles of gentle turns (under 30 degrees) toward straight, corners unchanged.
 SpMatC assemble_boundary_operator(const TriMesh& mesh, const Topology& topo, const Coefficients& c, double mu,
                                   double unwind = 1.0);
+// Its pattern (every value 1) without the coefficients: from the mesh and the loops alone.
+SpMatC boundary_operator_pattern(const TriMesh& mesh, const Topology& topo, double mu);
 
 // K = A^H A (+ B^H B). Full Hermitian matrix, compressed, rows sorted in each column.
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads = 1);

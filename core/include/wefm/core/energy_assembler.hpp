@@ -21,6 +21,14 @@ class EnergyAssembler {
   SpMatC assemble(const std::vector<double>& w, const std::vector<Complex>& sigma, int threads = 1) const;
 
   Index non_zeros() const { return static_cast<Index>(row_.size()); }
+  // K's pattern: compressed columns, rows ascending in each column.
+  const std::vector<int>& outer() const { return outer_; }
+  const std::vector<int>& rows() const { return row_; }
+
+  // Takes B's values for the boundary term, B with the pattern the assembler was built with (its
+  // values then may have been anything: the pattern alone sets K's). False, and nothing changed,
+  // when B^H B's pattern differs from the one built with.
+  bool set_boundary(const SpMatC* B);
 
  private:
   const Topology* tp_;

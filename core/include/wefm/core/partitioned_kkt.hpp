@@ -27,6 +27,13 @@ class PartitionedKKT {
   // `points`: a 3D point per unknown of K, for the ordering should K_PP be analysed
   // (SparseCholesky::set_ordering_points, passed on in K_PP's numbering).
   void set_matrix(const SpMatC& K, Index x0, Index x1, const std::vector<Vec3>* points = nullptr);
+  // The symbolic analysis of K_PP alone, ahead of K's values, in two calls: set_pattern copies K's
+  // pattern (n x n, compressed columns `outer`, `inner`, rows sorted; not read afterwards) with
+  // x0, x1 split off, and analyse_pattern analyses it. A set_matrix of a K with this pattern and
+  // the same x0, x1 then factorises without analysing again. Both may run on a thread of their own
+  // while nothing else uses this object.
+  void set_pattern(Index n, const int* outer, const int* inner, Index x0, Index x1, const std::vector<Vec3>* points = nullptr);
+  void analyse_pattern();
 
   // min z^H K z  s.t.  rows, and sum_i eta_i z_i = 0 when eta is given. Prefer fixing translation
   // with a pin and shifting afterwards: the dense eta row makes the reduced system ill-conditioned
@@ -74,6 +81,11 @@ class PartitionedKKT {
     Complex eta_dot{0, 0};   // eta_P . (K_PP^{-1} source)
   };
   void build_cache(const std::vector<Index>& universe, const Eigen::VectorXd* eta);
+  // x0, x1 split off K (n x n, its pattern and values; values null: the pattern of K_PP only,
+  // with zero values, and K_PX, K_XX left out).
+  void split(Index n, const int* outer, const int* inner, const Complex* val, Index x0, Index x1);
+  // The ordering points of the next analysis, in K_PP's numbering (none when points is null).
+  void set_points(const std::vector<Vec3>* points);
   // One elimination: K z + C^H lambda = f, C z = d. Returns z and writes lambda.
   VectorXc eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f, const Eigen::VectorXcd& d,
                      Eigen::VectorXcd& lambda, bool check);

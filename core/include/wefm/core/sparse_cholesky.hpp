@@ -45,6 +45,10 @@ class SparseCholeskyT {
   // Analyses the pattern when it differs from the last one, then factorises numerically.
   // Throws Error(not_positive_definite) when the matrix is not positive definite.
   void factorize(const Matrix& K);
+  // The symbolic analysis alone, of K's pattern (its values are not read), when it differs from
+  // the last one analysed; returns whether it analysed. A factorize of a matrix with this pattern
+  // then goes straight to the numeric factorisation. Throws Error(out_of_memory) as factorize does.
+  bool analyze(const Matrix& K);
   Dense solve(const Dense& rhs);
   // Entries (rows, cols) of the factorised matrix's inverse, by forward solves restricted to the
   // elimination tree (supernodal_inverse.hpp): for many unit right-hand sides where only a few
@@ -90,6 +94,9 @@ class SparseCholeskyT {
 
  private:
   struct Impl;
+  // The map of K's entries into the own numeric factorisation's layout (supernodal_refactor.hpp),
+  // when it applies and is not made yet.
+  void prepare_own_refactor(const Matrix& K);
   std::unique_ptr<Impl> impl_;
   FactorCounters counters_;
   Index n_ = 0;
