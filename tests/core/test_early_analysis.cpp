@@ -2,11 +2,10 @@
 // pattern foreseen without the coefficients, an assembler built on it taking B's values later, and
 // a PartitionedKKT analysed from the pattern alone, then factorised without a second analysis, to
 // the bits of the analysis made with the values.
-#include <cstring>
-
 #include <doctest/doctest.h>
 
 #include "meshes.hpp"
+#include "same_bits.hpp"
 #include "wefm/core/coefficients.hpp"
 #include "wefm/core/early_analysis.hpp"
 #include "wefm/core/energy.hpp"
@@ -16,22 +15,10 @@
 #include "wefm/core/topology.hpp"
 
 using namespace wefm;
+using wefm::test::same_bits;
+using wefm::test::same_pattern;
 
 namespace {
-
-bool same_pattern(const SpMatC& a, const SpMatC& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() && a.nonZeros() == b.nonZeros() &&
-         std::memcmp(a.outerIndexPtr(), b.outerIndexPtr(), sizeof(int) * static_cast<size_t>(a.cols() + 1)) == 0 &&
-         std::memcmp(a.innerIndexPtr(), b.innerIndexPtr(), sizeof(int) * static_cast<size_t>(a.nonZeros())) == 0;
-}
-
-bool same_bits(const SpMatC& a, const SpMatC& b) {
-  return same_pattern(a, b) && std::memcmp(a.valuePtr(), b.valuePtr(), sizeof(Complex) * static_cast<size_t>(a.nonZeros())) == 0;
-}
-
-bool same_bits(const VectorXc& a, const VectorXc& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(Complex) * static_cast<size_t>(a.size())) == 0;
-}
 
 // A plate with a hole (two loops, so the boundary term couples uses along both).
 TriMesh holed_plate() {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include <doctest/doctest.h>
+#include "same_bits.hpp"
 
 #include "magnetic_grid.hpp"
 #include "solve_helpers.hpp"
@@ -14,6 +15,7 @@
 #include "wefm/core/sparse_cholesky.hpp"
 
 using namespace wefm;
+using wefm::test::same_bits;
 
 namespace {
 
@@ -24,11 +26,6 @@ Eigen::MatrixXcd random_rhs(Index n, Index cols) {
   for (Index j = 0; j < cols; ++j)
     for (Index i = 0; i < n; ++i) b(i, j) = Complex(g(rng), g(rng));
   return b;
-}
-
-bool same_bits(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::memcmp(a.data(), b.data(), sizeof(Complex) * static_cast<size_t>(a.size())) == 0;
 }
 
 // Restores the process-wide switches however the test ends.

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include "meshes.hpp"
+#include "same_bits.hpp"
 #include "solve_helpers.hpp"
 #include "wefm/core/coefficients.hpp"
 #include "wefm/core/early_analysis.hpp"
@@ -15,18 +16,7 @@ using namespace wefm;
 
 namespace {
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-bool same_bits(const SpMatC& a, const SpMatC& b) {
-  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros() || !a.isCompressed() || !b.isCompressed()) return false;
-  const size_t nz = static_cast<size_t>(a.nonZeros());
-  return std::memcmp(a.outerIndexPtr(), b.outerIndexPtr(), static_cast<size_t>(a.cols() + 1) * sizeof(int)) == 0 &&
-         std::memcmp(a.innerIndexPtr(), b.innerIndexPtr(), nz * sizeof(int)) == 0 &&
-         std::memcmp(a.valuePtr(), b.valuePtr(), nz * sizeof(Complex)) == 0;
-}
+using wefm::test::same_bits;  // and the Coefficients overload below
 
 bool same_bits(const Coefficients& a, const Coefficients& b) {
   return a.length_scale == b.length_scale && same_bits(a.alpha, b.alpha) && same_bits(a.beta, b.beta) &&

@@ -1,24 +1,16 @@
 // PartitionedKKT: an unrefined solve refined later (a repeated edge's mode candidate ranked first,
 // refined only if it may win) gives the bits of a refined solve, and holds its constraints.
-#include <cstring>
-
 #include <doctest/doctest.h>
 
 #include "meshes.hpp"
+#include "same_bits.hpp"
 #include "wefm/core/coefficients.hpp"
 #include "wefm/core/energy.hpp"
 #include "wefm/core/partitioned_kkt.hpp"
 #include "wefm/core/topology.hpp"
 
 using namespace wefm;
-
-namespace {
-
-bool same_bits(const VectorXc& a, const VectorXc& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(Complex) * static_cast<size_t>(a.size())) == 0;
-}
-
-}  // namespace
+using wefm::test::same_bits;
 
 TEST_CASE("refining an unrefined solve later gives the refined solve's bits") {
   // A curved, jittered strip of skinny triangles (a CAD tessellation's), so that K_PP is badly

@@ -1,16 +1,17 @@
 // wefm's own supernodal numeric factorisation (supernodal_refactor.hpp) on CHOLMOD's analysis: the
 // factor CHOLMOD would give to rounding, the same bits on any number of threads, a matrix that is
 // not positive definite still refused, and the switch back to CHOLMOD's own factorisations.
-#include <cstring>
 #include <random>
 
 #include <doctest/doctest.h>
+#include "same_bits.hpp"
 
 #include "magnetic_grid.hpp"
 #include "wefm/core/error.hpp"
 #include "wefm/core/sparse_cholesky.hpp"
 
 using namespace wefm;
+using wefm::test::same_bits;
 
 namespace {
 
@@ -20,10 +21,6 @@ Eigen::MatrixXcd rhs(Index n) {
   Eigen::MatrixXcd b(n, 2);
   for (Index i = 0; i < b.size(); ++i) b.data()[i] = Complex(g(rng), g(rng));
   return b;
-}
-
-bool same_bits(const Eigen::MatrixXcd& a, const Eigen::MatrixXcd& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(Complex) * static_cast<size_t>(a.size())) == 0;
 }
 
 }  // namespace
