@@ -201,6 +201,15 @@ SpMatC assemble_boundary_operator(const TriMesh& m, const Topology& tp, const Co
 
 SpMatC boundary_operator_pattern(const TriMesh& m, const Topology& tp, double mu) { return boundary_operator(m, tp, nullptr, mu, 1.0); }
 
+SpMatC boundary_gram(const SpMatC* B) {
+  SpMatC btb;
+  if (B && B->nonZeros()) {
+    btb = SpMatC(B->adjoint()) * (*B);
+    btb.makeCompressed();
+  }
+  return btb;
+}
+
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads) {
   // K = A^H A + B^H B column by column (Gustavson): K(:, j) = sum over the rows r of column j of
   // conj(row r) * M(r, j), rows in ascending order, A's and B's sums kept apart and added last, as

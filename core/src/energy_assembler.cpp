@@ -1,4 +1,5 @@
 #include "wefm/core/energy_assembler.hpp"
+#include "wefm/core/energy.hpp"
 #include "wefm/core/huge_pages.hpp"
 
 #include <algorithm>
@@ -17,10 +18,7 @@ constexpr Index kColumnBlock = 8192;
 
 EnergyAssembler::EnergyAssembler(const Topology& tp, const SpMatC* B, int threads) : tp_(&tp), uc_(use_corners(tp)) {
   const Index n = tp.use_count;
-  if (B && B->nonZeros()) {
-    btb_ = SpMatC(B->adjoint()) * (*B);
-    btb_.makeCompressed();
-  }
+  btb_ = boundary_gram(B);
   const bool with_b = btb_.nonZeros() > 0;
   // Rows of column u: the uses of every triangle at a corner of u, and B^H B's rows.
   const Index blocks = (n + kColumnBlock - 1) / kColumnBlock;
@@ -90,11 +88,7 @@ EnergyAssembler::EnergyAssembler(const Topology& tp, const SpMatC* B, int thread
 }
 
 bool EnergyAssembler::set_boundary(const SpMatC* B) {
-  SpMatC btb;
-  if (B && B->nonZeros()) {
-    btb = SpMatC(B->adjoint()) * (*B);
-    btb.makeCompressed();
-  }
+  const SpMatC btb = boundary_gram(B);
   const bool same = btb.nonZeros() == btb_.nonZeros() && (btb.nonZeros() == 0 || (btb.cols() == btb_.cols() &&
                     std::equal(btb.outerIndexPtr(), btb.outerIndexPtr() + btb.cols() + 1, btb_.outerIndexPtr()) &&
                     std::equal(btb.innerIndexPtr(), btb.innerIndexPtr() + btb.nonZeros(), btb_.innerIndexPtr())));

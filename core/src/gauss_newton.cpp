@@ -140,8 +140,7 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
         }
   }
   if (B_ && B_->nonZeros()) {
-    SpMatC btb = SpMatC(B_->adjoint()) * (*B_);
-    btb.makeCompressed();
+    const SpMatC btb = boundary_gram(B_);
     for (Index col = 0; col < btb.outerSize(); ++col)
       for (SpMatC::InnerIterator it(btb, col); it; ++it) {
         btb_slot_.push_back(slot(static_cast<Index>(it.row()), col));

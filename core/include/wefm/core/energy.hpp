@@ -30,6 +30,8 @@ SpMatC assemble_boundary_operator(const TriMesh& mesh, const Topology& topo, con
                                   double unwind = 1.0);
 // Its pattern (every value 1) without the coefficients: from the mesh and the loops alone.
 SpMatC boundary_operator_pattern(const TriMesh& mesh, const Topology& topo, double mu);
+// B^H B, compressed: the boundary term's part of K (empty for a null or empty B).
+SpMatC boundary_gram(const SpMatC* B);
 
 // K = A^H A (+ B^H B). Full Hermitian matrix, compressed, rows sorted in each column.
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads = 1);
