@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -109,7 +110,12 @@ inline Complex cmul(Complex x, Complex y) {
   return Complex(x.real() * y.real() + x.imag() * y.imag(), x.real() * y.imag() - x.imag() * y.real());
 }
 
+std::atomic<bool> g_rotation_deflation{true};
+
 }  // namespace
+
+void set_rotation_deflation(bool on) { g_rotation_deflation.store(on); }
+bool rotation_deflation() { return g_rotation_deflation.load(); }
 
 GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC& K,
                          const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta)
@@ -604,8 +610,43 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
     return sum;
   };
   auto elementwise = [&](const std::function<void(Index, Index)>& body) { parallel_for(threads_, nr, body); };
+  // The energy does not change when the layout turns, and the step matrix is the Gauss-Newton one:
+  // along the rotation v its curvature is the energy (the residuals turn with the layout), a
+  // thousandth of the complex-linear part's (1M plate, s = 1: v^T A v / v^T M v = 0.001). The gauge
+  // row only holds the direction between two uses, so rotations bent near them stay in the step's
+  // space with a small Rayleigh quotient (CG's Ritz values reach 0.04 on the plate against 0.15 on
+  // the disk), and CG spends iterations on them. The preconditioner gets a coarse correction along
+  // v, projected into the constraint rows' null space: B = M^-1 + v v^T / (v^T A v), symmetric
+  // positive definite when M is, which lifts that mode's eigenvalue to about 1. It costs one
+  // operator product per step and a dot product and an update per application; with C v = 0 the
+  // projection's W = B C^T = M^-1 C^T is unchanged. The balancing form (Q + (I - QA) M^-1 (I - AQ))
+  // took a few fewer CG iterations for one more preconditioner solve per step: measured in
+  // docs/PERFORMANCE.md.
+  Eigen::VectorXd dv;
+  double de = 0;
+  bool deflate = false;
+  auto deflation = [&] {
+    deflate = false;
+    if (rotation_.size() != nr) return;
+    dv = rotation_;
+    if (C.rows() > 0) {
+      Eigen::VectorXd cv = Eigen::VectorXd::Zero(C.rows());
+      for (Index k : c_cols) cv += C.col(k) * dv[k];
+      dv -= W * Sc.solve(cv);
+    }
+    Eigen::VectorXd av(nr);
+    apply(dv, av);
+    de = dot(dv, av);
+    deflate = de > 0 && std::isfinite(de);
+  };
   auto precondition = [&](const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
     this->precondition(rr, zr_m);
+    if (deflate) {
+      const double a = dot(dv, rr) / de;
+      elementwise([&](Index i0, Index i1) {
+        for (Index i = i0; i < i1; ++i) zr_m(i, 0) += a * dv[i];
+      });
+    }
     y.resize(nr);
     if (C.rows() == 0) {
       elementwise([&](Index i0, Index i1) { y.segment(i0, i1 - i0) = zr_m.col(0).segment(i0, i1 - i0); });
@@ -618,6 +659,7 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
       for (Index i = i0; i < i1; ++i) y[i] = zr_m(i, 0) - W.row(i).dot(t);
     });
   };
+  deflation();
   delta.setZero(nr);
   r = -g;
   last_pcg_ = 0;
@@ -679,6 +721,7 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
     fresh = true;
     baseline_pending_ = true;  // the next step measures the new factor
     project();
+    deflation();
   }
 }
 
@@ -874,6 +917,13 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     const int v = diagonal_slot(Kc, i);
     diag[2 * i] = Kc.valuePtr()[v].real() + S[v].real();
     diag[2 * i + 1] = Kc.valuePtr()[v].real() - S[v].real();
+  }
+  rotation_.resize(0);
+  if (rotation_deflation()) {
+    const Complex mean = z.mean();
+    const VectorXc turn = Complex(0, 1) * (z.array() - mean).matrix();
+    rotation_.resize(nr);
+    as_complex(rotation_) = identity_ ? turn : wefm::reduce(sub_, turn);
   }
   const double dmean = diag.mean() > 0 ? diag.mean() : 1.0;
   for (int attempt = 0; attempt < 8; ++attempt) {

@@ -35,6 +35,11 @@ struct GaussNewtonReport {
   bool cut = false;  // ended at a step cut short, with stop_at_cut set (see set_stop_at_cut)
 };
 
+// Whether the Gauss-Newton steps' conjugate gradients deflate the layout's rotation (on by default;
+// process-wide, for tests and measurements that compare with and without).
+void set_rotation_deflation(bool on);
+bool rotation_deflation();
+
 class GaussNewton {
  public:
   // K_pattern: the Hermitian energy at s = 0 (its pattern is the pattern of every Gauss-Newton
@@ -232,6 +237,9 @@ class GaussNewton {
   std::vector<Index> unit_uses_;
   Eigen::MatrixXd units_;
   bool units_valid_ = false;
+  // The layout's infinitesimal rotation i (z - mean) over the step's unknowns (real form), which
+  // the step's conjugate gradients deflate (solve_step); empty when switched off.
+  Eigen::VectorXd rotation_;
   double last_e0_ = 0;         // energy at the last linearisation
   ScaleSums accepted_sums_;  // at the layout the last line search accepted, until rescale uses them
   bool accepted_sums_valid_ = false;
