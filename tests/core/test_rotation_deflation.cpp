@@ -1,7 +1,7 @@
 // The Gauss-Newton steps' conjugate gradients deflate the layout's rotation (gauss_newton.cpp,
-// solve_step): a change of preconditioner only, so the layout is the same to CG's tolerance, the
-// constraint rows hold as before, and where the rotation's small Rayleigh quotient set the count,
-// CG takes fewer iterations.
+// solve_step): a change of preconditioner only, so the layout is the same to the continuation's
+// tolerance, and where the rotation's small Rayleigh quotient set the count, CG takes fewer
+// iterations.
 #include <algorithm>
 #include <cmath>
 
@@ -67,7 +67,8 @@ TEST_CASE("deflating the rotation gives the same layout to the continuation's to
     }
 }
 
-TEST_CASE("deflating the rotation over substituted seams and under a caller's pin: the same layout, the rows held") {
+// A caller's pin under the deflated preconditioner: test_continuation.cpp ("a caller's pin holds").
+TEST_CASE("deflating the rotation over substituted seams gives the same layout") {
   std::vector<std::pair<Index, Index>> seam;
   const TriMesh cylinder = test::open_cylinder(24, 8, &seam);
   const Options o = test::with_s(1.0);
@@ -77,24 +78,4 @@ TEST_CASE("deflating the rotation over substituted seams and under a caller's pi
   CHECK(on.report.converged);
   CHECK(on.report.quality.flips == 0);
   CHECK((on.uv - off.uv).cwiseAbs().maxCoeff() / extent(off.uv) < 1e-5);
-
-  // A pin is a constraint row: every CG iterate stays in the rows' null space with the deflated
-  // preconditioner as without it.
-  for (bool deflate : {false, true}) {
-    CAPTURE(deflate);
-    const Deflation d(deflate);
-    Face f;
-    f.set_mesh(test::hemisphere());
-    const Index use = f.topology().loop_uses[0][0];
-    LinearRow pin;
-    pin.terms = {{use, 1.0}};
-    pin.rhs = Complex(3, 4);
-    f.add_constraint(pin);
-    Options po;
-    po.s = 2;
-    f.set_options(po);
-    f.solve(nullptr, nullptr);
-    CHECK(f.result().report.converged);
-    CHECK(std::abs(f.result().uv[use] - Complex(3, 4)) < 1e-9);
-  }
 }
