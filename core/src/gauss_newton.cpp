@@ -480,7 +480,7 @@ double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) {
 }
 
 bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
-                             const Eigen::MatrixXd& C, Eigen::VectorXd& delta) {
+                             const Eigen::MatrixXd& C, const Eigen::VectorXd& rotation, Eigen::VectorXd& delta) {
   // Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
   // by a complex factorisation of the complex-linear part of an earlier Gauss-Newton matrix (the
   // constraint preconditioner keeps every iterate in the null space of C). The real 2n matrix
@@ -627,8 +627,8 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
   bool deflate = false;
   auto deflation = [&] {
     deflate = false;
-    if (rotation_.size() != nr) return;
-    dv = rotation_;
+    if (rotation.size() != nr) return;
+    dv = rotation;
     if (C.rows() > 0) {
       Eigen::VectorXd cv = Eigen::VectorXd::Zero(C.rows());
       for (Index k : c_cols) cv += C.col(k) * dv[k];
@@ -918,18 +918,19 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     diag[2 * i] = Kc.valuePtr()[v].real() + S[v].real();
     diag[2 * i + 1] = Kc.valuePtr()[v].real() - S[v].real();
   }
-  rotation_.resize(0);
+  // The layout's infinitesimal rotation i (z - mean), which the step's CG deflates (solve_step).
+  Eigen::VectorXd rotation;
   if (rotation_deflation()) {
     const Complex mean = z.mean();
     const VectorXc turn = Complex(0, 1) * (z.array() - mean).matrix();
-    rotation_.resize(nr);
-    as_complex(rotation_) = identity_ ? turn : wefm::reduce(sub_, turn);
+    rotation.resize(nr);
+    as_complex(rotation) = identity_ ? turn : wefm::reduce(sub_, turn);
   }
   const double dmean = diag.mean() > 0 ? diag.mean() : 1.0;
   for (int attempt = 0; attempt < 8; ++attempt) {
     const Eigen::VectorXd shift = (lambda_ * diag).array() + 1e-12 * dmean;
     Eigen::VectorXd delta;
-    if (!solve_step(Kc, S, shift, gy, C, delta)) {
+    if (!solve_step(Kc, S, shift, gy, C, rotation, delta)) {
       lambda_ *= 10;
       continue;
     }

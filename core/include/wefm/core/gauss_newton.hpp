@@ -166,9 +166,10 @@ class GaussNewton {
   double barrier_energy(const VectorXc& z) const;
   void linearise_barrier(const VectorXc& z, VectorXc& g, double& energy);
   // Projected CG on the step system; `Kc`, `S` are the (reduced) complex-linear and anti-linear
-  // parts of the Gauss-Newton matrix: H dy = Kc dy + S conj(dy).
+  // parts of the Gauss-Newton matrix: H dy = Kc dy + S conj(dy). `rotation`: the layout's
+  // infinitesimal rotation over the step's unknowns (real form), which CG deflates; empty: none.
   bool solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
-                  const Eigen::MatrixXd& C, Eigen::VectorXd& delta);
+                  const Eigen::MatrixXd& C, const Eigen::VectorXd& rotation, Eigen::VectorXd& delta);
   // Kc_, S_, the gradient g (complex: J^H r, Re and Im interleaved in the real CG) and the energy
   // at z; also the UV base length of every half-edge (len_), against which a step's rho change is
   // measured.
@@ -237,9 +238,6 @@ class GaussNewton {
   std::vector<Index> unit_uses_;
   Eigen::MatrixXd units_;
   bool units_valid_ = false;
-  // The layout's infinitesimal rotation i (z - mean) over the step's unknowns (real form), which
-  // the step's conjugate gradients deflate (solve_step); empty when switched off.
-  Eigen::VectorXd rotation_;
   double last_e0_ = 0;         // energy at the last linearisation
   ScaleSums accepted_sums_;  // at the layout the last line search accepted, until rescale uses them
   bool accepted_sums_valid_ = false;
