@@ -190,7 +190,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     rep.converged = rr.converged;
     rep.s = 1.0;
     t0 = now();
-    rep.quality = evaluate_quality(mesh, tp, res.uv);
+    rep.quality = evaluate_quality(mesh, tp, res.uv, threads);
     rep.time.quality = now() - t0;
     rep.time.total = now() - t_start;
     rep.peak_memory_mb = peak_memory_mb();
@@ -275,7 +275,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   Quality last_quality;
   auto score_of = [&](const VectorXc& zz) {
     const double tq = now();
-    last_quality = evaluate_quality(mesh, tp, zz);
+    last_quality = evaluate_quality(mesh, tp, zz, threads);
     rep.time.quality += now() - tq;
     return last_quality.score;
   };
@@ -461,7 +461,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
     // substituted seams the continuation factorises its own pattern: do not hold two factors.
     // The caches (a copy of K among them) go first, before the continuation allocates.
     kkt.release_caches();
-    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend, opt.min_beta);  // takes K over (K is not needed after)
+    GaussNewton gn(tp, coef, Bp, opt.k, opt.residual, K, sub, keep, opt.backend, opt.min_beta, threads);  // takes K over (K is not needed after)
     gn.own_factor().set_threads(opt.threads);
     gn.set_threads(opt.threads);
     gn.own_factor().set_memory_limit(opt.memory_limit_mb, other_mb);
@@ -572,7 +572,7 @@ FlattenResult flatten_attempt(const FlattenInput& in) {
   res.uv = z * ls;
   require_finite(res.uv);
   t0 = now();
-  rep.quality = evaluate_quality(mesh, tp, res.uv);
+  rep.quality = evaluate_quality(mesh, tp, res.uv, threads);
   rep.time.quality += now() - t0;
   rep.counters = kkt.counters();
   rep.counters.analyses += gn_counters.analyses;

@@ -118,9 +118,9 @@ void set_rotation_deflation(bool on) { g_rotation_deflation.store(on); }
 bool rotation_deflation() { return g_rotation_deflation.load(); }
 
 GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC& K,
-                         const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta)
-    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k)), sub_(sub), barrier_(tp, c, min_beta), rows_(std::move(rows)),
-      own_chol_(backend) {
+                         const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta, int threads)
+    : tp_(tp), c_(c), B_(B), form_(form), w_(compute_weights(tp, c, k, threads)), sub_(sub), barrier_(tp, c, min_beta), rows_(std::move(rows)),
+      own_chol_(backend), threads_(threads) {
   const Index n = tp.use_count;
   K.makeCompressed();
   Kc_.swap(K);
@@ -137,13 +137,15 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
     // triangles; the binary searches took 15% of the linearisation at 1M triangles).
     const size_t nt = tp.corner_use.size() / 3;
     assign_huge(block_offset_, 9 * nt);
-    for (size_t t = 0; t < nt; ++t)
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) {
-          const Index ua = tp.corner_use[3 * t + static_cast<size_t>(a)], ub = tp.corner_use[3 * t + static_cast<size_t>(b)];
-          const int o = slot(ua, ub) - Kc_.outerIndexPtr()[ub];
-          block_offset_[9 * t + static_cast<size_t>(3 * a + b)] = static_cast<std::uint8_t>(o < kFarOffset ? o : kFarOffset);
-        }
+    parallel_for(threads_, static_cast<Index>(nt), [&](Index t0, Index t1) {
+      for (size_t t = static_cast<size_t>(t0); t < static_cast<size_t>(t1); ++t)
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) {
+            const Index ua = tp.corner_use[3 * t + static_cast<size_t>(a)], ub = tp.corner_use[3 * t + static_cast<size_t>(b)];
+            const int o = slot(ua, ub) - Kc_.outerIndexPtr()[ub];
+            block_offset_[9 * t + static_cast<size_t>(3 * a + b)] = static_cast<std::uint8_t>(o < kFarOffset ? o : kFarOffset);
+          }
+    });
   }
   if (B_ && B_->nonZeros()) {
     const SpMatC btb = boundary_gram(B_);

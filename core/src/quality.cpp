@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "wefm/core/parallel.hpp"
+
 namespace wefm {
 
 namespace {
@@ -74,55 +76,89 @@ std::int64_t count_boundary_intersections(const Topology& tp, const VectorXc& z)
   return static_cast<std::int64_t>(hits.size());
 }
 
-Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z) {
+Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z, int threads) {
   Quality q;
   const size_t nt = m.triangles.size();
+  const Index n = static_cast<Index>(nt);
+  // Per-triangle terms in parallel, every sum afterwards in triangle order in one thread: the same
+  // bits as a serial pass for any thread count (maxima do not depend on the order).
   std::vector<double> a3(nt), a2(nt);
+  parallel_for(threads, n, [&](Index t0, Index t1) {
+    for (size_t t = static_cast<size_t>(t0); t < static_cast<size_t>(t1); ++t) {
+      const Tri& f = m.triangles[t];
+      const Vec3 &p0 = m.vertices[static_cast<size_t>(f[0])], &p1 = m.vertices[static_cast<size_t>(f[1])], &p2 = m.vertices[static_cast<size_t>(f[2])];
+      a3[t] = 0.5 * (p1 - p0).cross(p2 - p0).norm();
+      const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
+      a2[t] = 0.5 * cross2(u1 - u0, u2 - u0);
+    }
+  });
+  double abs_uv = 0, wsum = 0;
   for (size_t t = 0; t < nt; ++t) {
-    const Tri& f = m.triangles[t];
-    const Vec3 &p0 = m.vertices[static_cast<size_t>(f[0])], &p1 = m.vertices[static_cast<size_t>(f[1])], &p2 = m.vertices[static_cast<size_t>(f[2])];
-    a3[t] = 0.5 * (p1 - p0).cross(p2 - p0).norm();
-    const Complex u0 = z[tp.corner_use[3 * t]], u1 = z[tp.corner_use[3 * t + 1]], u2 = z[tp.corner_use[3 * t + 2]];
-    a2[t] = 0.5 * cross2(u1 - u0, u2 - u0);
     q.area_3d += a3[t];
     q.uv_area += a2[t];
     if (a2[t] < 0) ++q.flips;
+    if (a3[t] > 0) wsum += a3[t];
   }
-  double abs_uv = 0;
   for (double a : a2) abs_uv += std::abs(a);
   const double k = abs_uv > 0 ? q.area_3d / abs_uv : 0.0;  // area normalisation
   const double ls = std::sqrt(k);
-  double wsum = 0;
+  // Weighted terms, written over a3 (w ar) and a2 (w r^2) once read; triangles of zero 3D area
+  // add exact zeros.
+  std::vector<double> wang(nt);
+  constexpr Index kMaxBlock = 65536;  // fixed blocks for the maxima, whatever the thread count
+  const Index blocks = (n + kMaxBlock - 1) / kMaxBlock;
+  std::vector<double> block_angle_max(static_cast<size_t>(blocks), 0.0), block_area_max(static_cast<size_t>(blocks), 0.0);
+  parallel_for(
+      threads, blocks,
+      [&](Index b0, Index b1) {
+        for (Index b = b0; b < b1; ++b) {
+          double angle_max = 0, area_max = 0;
+          for (size_t t = static_cast<size_t>(b * kMaxBlock); t < static_cast<size_t>(std::min(n, (b + 1) * kMaxBlock)); ++t) {
+            const double w = a3[t];
+            if (!(w > 0)) {
+              a3[t] = a2[t] = wang[t] = 0.0;
+              continue;
+            }
+            const double ratio = std::abs(a2[t]) * k / w;
+            const double r = ratio > 1 ? 1 / ratio : ratio;
+            // Jacobian in a local frame of the 3D triangle.
+            const Tri& f = m.triangles[t];
+            const Vec3 &p0 = m.vertices[static_cast<size_t>(f[0])], &p1 = m.vertices[static_cast<size_t>(f[1])], &p2 = m.vertices[static_cast<size_t>(f[2])];
+            const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+            const double l1 = e1.norm();
+            const Vec3 xa = e1 / l1, nrm = e1.cross(e2).normalized(), ya = nrm.cross(xa);
+            Eigen::Matrix2d P, U;
+            P << l1, e2.dot(xa), 0, e2.dot(ya);
+            const Complex d1 = (z[tp.corner_use[3 * t + 1]] - z[tp.corner_use[3 * t]]) * ls, d2 = (z[tp.corner_use[3 * t + 2]] - z[tp.corner_use[3 * t]]) * ls;
+            U << d1.real(), d2.real(), d1.imag(), d2.imag();
+            const Eigen::Matrix2d J = U * P.inverse();
+            // Singular values of a 2x2 as (E +- F) / 2: E measures the conformal part, F the
+            // anti-conformal part, so a near-conformal map keeps full precision (the textbook
+            // sqrt(tr^2/4 - det^2) form loses half the digits exactly there).
+            const double a = J(0, 0), bb = J(0, 1), c = J(1, 0), d = J(1, 1);
+            const double E = std::hypot(a + d, c - bb), F = std::hypot(a - d, c + bb);
+            const double s1 = 0.5 * (E + F), s2 = 0.5 * std::abs(E - F);
+            const double ang = s2 > 0 ? s1 / s2 : 1e300;
+            const double ar = std::abs(std::log(std::max(ratio, 1e-300)));
+            a2[t] = w * r * r;
+            a3[t] = w * ar;
+            wang[t] = w * ang;
+            angle_max = std::max(angle_max, ang);
+            area_max = std::max(area_max, ar);
+          }
+          block_angle_max[static_cast<size_t>(b)] = angle_max;
+          block_area_max[static_cast<size_t>(b)] = area_max;
+        }
+      },
+      1);
   for (size_t t = 0; t < nt; ++t) {
-    if (!(a3[t] > 0)) continue;
-    const double w = a3[t];
-    wsum += w;
-    double ratio = std::abs(a2[t]) * k / a3[t];
-    const double r = ratio > 1 ? 1 / ratio : ratio;
-    q.score += w * r * r;
-    // Jacobian in a local frame of the 3D triangle.
-    const Tri& f = m.triangles[t];
-    const Vec3 &p0 = m.vertices[static_cast<size_t>(f[0])], &p1 = m.vertices[static_cast<size_t>(f[1])], &p2 = m.vertices[static_cast<size_t>(f[2])];
-    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
-    const double l1 = e1.norm();
-    const Vec3 xa = e1 / l1, n = e1.cross(e2).normalized(), ya = n.cross(xa);
-    Eigen::Matrix2d P, U;
-    P << l1, e2.dot(xa), 0, e2.dot(ya);
-    const Complex d1 = (z[tp.corner_use[3 * t + 1]] - z[tp.corner_use[3 * t]]) * ls, d2 = (z[tp.corner_use[3 * t + 2]] - z[tp.corner_use[3 * t]]) * ls;
-    U << d1.real(), d2.real(), d1.imag(), d2.imag();
-    const Eigen::Matrix2d J = U * P.inverse();
-    // Singular values of a 2x2 as (E +- F) / 2: E measures the conformal part, F the
-    // anti-conformal part, so a near-conformal map keeps full precision (the textbook
-    // sqrt(tr^2/4 - det^2) form loses half the digits exactly there).
-    const double a = J(0, 0), b = J(0, 1), c = J(1, 0), d = J(1, 1);
-    const double E = std::hypot(a + d, c - b), F = std::hypot(a - d, c + b);
-    const double s1 = 0.5 * (E + F), s2 = 0.5 * std::abs(E - F);
-    const double ang = s2 > 0 ? s1 / s2 : 1e300;
-    const double ar = std::abs(std::log(std::max(ratio, 1e-300)));
-    q.angle_mean += w * ang;
-    q.area_mean += w * ar;
-    q.angle_max = std::max(q.angle_max, ang);
-    q.area_max = std::max(q.area_max, ar);
+    q.score += a2[t];
+    q.angle_mean += wang[t];
+    q.area_mean += a3[t];
+  }
+  for (Index b = 0; b < blocks; ++b) {
+    q.angle_max = std::max(q.angle_max, block_angle_max[static_cast<size_t>(b)]);
+    q.area_max = std::max(q.area_max, block_area_max[static_cast<size_t>(b)]);
   }
   if (wsum > 0) {
     q.score /= wsum;

@@ -1,5 +1,6 @@
 // Coefficients, assembly and whole solves split over threads give the same bits as one thread, and
 // the matrix assembled straight into its pattern is the A^H A + B^H B it replaces.
+#include <cmath>
 #include <cstring>
 
 #include <doctest/doctest.h>
@@ -11,6 +12,7 @@
 #include "wefm/core/early_analysis.hpp"
 #include "wefm/core/energy.hpp"
 #include "wefm/core/float_supernodal_solve.hpp"
+#include "wefm/core/quality.hpp"
 
 using namespace wefm;
 
@@ -70,6 +72,28 @@ TEST_CASE("coefficients and assembly are bit-identical for 1 and 4 threads") {
       const SpMatC D1 = assemble_energy(tp, c1, sigma1, 0.5, form, &B, 1);
       CHECK(same_bits(D1, assemble_energy(tp, c1, sigma1, 0.5, form, &B, 4)));
     }
+  }
+}
+
+TEST_CASE("quality figures are bit-identical for 1 and 4 threads") {
+  for (const Case& cs : cases()) {
+    CAPTURE(cs.name);
+    const Topology tp = build_topology(cs.mesh, cs.spec);
+    // A layout with every kind of term: the 3D x, y of each use, jittered, with every 97th use
+    // thrown far enough to flip its triangles.
+    VectorXc z(tp.use_count);
+    for (Index u = 0; u < tp.use_count; ++u) {
+      const Vec3& p = cs.mesh.vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])];
+      const double jitter = 1e-3 * std::sin(1.7 * static_cast<double>(u));
+      z[u] = Complex(p.x() + jitter, p.y() + p.z() - jitter);
+      if (u % 97 == 0) z[u] += Complex(0.05, -0.03);
+    }
+    const Quality q1 = evaluate_quality(cs.mesh, tp, z, 1);
+    REQUIRE(q1.flips > 0);
+    REQUIRE(q1.angle_max > q1.angle_mean);
+    const Quality q4 = evaluate_quality(cs.mesh, tp, z, 4);
+    CHECK(std::memcmp(&q1, &q4, sizeof(Quality)) == 0);
+    CHECK(q4.flips == q1.flips);
   }
 }
 

@@ -47,8 +47,9 @@ class GaussNewton {
   // cycle closures); they hold at the starting layout.
   // K_pattern is taken over (swapped out: Eigen 3.4's sparse matrices have no move constructor, and
   // a copy of K is 70 MB at 1M triangles); the caller's matrix is left empty.
+  // threads: as set_threads, for the constructor's own passes too (weights, block offsets).
   GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC& K_pattern,
-              const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta);
+              const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta, int threads = 1);
 
   // The gauge v = sum_k g_k y_k (a vector between two far uses). For s >= 1 only its direction is
   // held (rotation) and the size is an unknown like any other. Below s = 1 the energy tends to 0 as

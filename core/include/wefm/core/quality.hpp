@@ -14,8 +14,9 @@ struct Quality {
 };
 
 // z holds the UV of every use (any scale). Triangles of zero 3D area are left out of the
-// distortion figures but still counted as flips when their UV area is negative.
-Quality evaluate_quality(const TriMesh& mesh, const Topology& topo, const VectorXc& z);
+// distortion figures but still counted as flips when their UV area is negative. `threads`: the
+// per-triangle passes' threads; the figures are the same bits for any count.
+Quality evaluate_quality(const TriMesh& mesh, const Topology& topo, const VectorXc& z, int threads = 1);
 
 // Proper crossings between the segments of all loops (segments sharing a use are not tested).
 // A uniform grid keeps it near-linear in the number of segments.
