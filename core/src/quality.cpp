@@ -110,10 +110,10 @@ Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z
   std::vector<double> block_angle_max(static_cast<size_t>(blocks), 0.0), block_area_max(static_cast<size_t>(blocks), 0.0);
   parallel_for(
       threads, blocks,
-      [&](Index b0, Index b1) {
-        for (Index b = b0; b < b1; ++b) {
+      [&](Index blk0, Index blk1) {
+        for (Index blk = blk0; blk < blk1; ++blk) {
           double angle_max = 0, area_max = 0;
-          for (size_t t = static_cast<size_t>(b * kMaxBlock); t < static_cast<size_t>(std::min(n, (b + 1) * kMaxBlock)); ++t) {
+          for (size_t t = static_cast<size_t>(blk * kMaxBlock); t < static_cast<size_t>(std::min(n, (blk + 1) * kMaxBlock)); ++t) {
             const double w = a3[t];
             if (!(w > 0)) {
               a3[t] = a2[t] = wang[t] = 0.0;
@@ -126,7 +126,7 @@ Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z
             const Vec3 &p0 = m.vertices[static_cast<size_t>(f[0])], &p1 = m.vertices[static_cast<size_t>(f[1])], &p2 = m.vertices[static_cast<size_t>(f[2])];
             const Vec3 e1 = p1 - p0, e2 = p2 - p0;
             const double l1 = e1.norm();
-            const Vec3 xa = e1 / l1, nrm = e1.cross(e2).normalized(), ya = nrm.cross(xa);
+            const Vec3 xa = e1 / l1, normal = e1.cross(e2).normalized(), ya = normal.cross(xa);
             Eigen::Matrix2d P, U;
             P << l1, e2.dot(xa), 0, e2.dot(ya);
             const Complex d1 = (z[tp.corner_use[3 * t + 1]] - z[tp.corner_use[3 * t]]) * ls, d2 = (z[tp.corner_use[3 * t + 2]] - z[tp.corner_use[3 * t]]) * ls;
@@ -135,8 +135,8 @@ Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z
             // Singular values of a 2x2 as (E +- F) / 2: E measures the conformal part, F the
             // anti-conformal part, so a near-conformal map keeps full precision (the textbook
             // sqrt(tr^2/4 - det^2) form loses half the digits exactly there).
-            const double a = J(0, 0), bb = J(0, 1), c = J(1, 0), d = J(1, 1);
-            const double E = std::hypot(a + d, c - bb), F = std::hypot(a - d, c + bb);
+            const double a = J(0, 0), b = J(0, 1), c = J(1, 0), d = J(1, 1);
+            const double E = std::hypot(a + d, c - b), F = std::hypot(a - d, c + b);
             const double s1 = 0.5 * (E + F), s2 = 0.5 * std::abs(E - F);
             const double ang = s2 > 0 ? s1 / s2 : 1e300;
             const double ar = std::abs(std::log(std::max(ratio, 1e-300)));
@@ -146,8 +146,8 @@ Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z
             angle_max = std::max(angle_max, ang);
             area_max = std::max(area_max, ar);
           }
-          block_angle_max[static_cast<size_t>(b)] = angle_max;
-          block_area_max[static_cast<size_t>(b)] = area_max;
+          block_angle_max[static_cast<size_t>(blk)] = angle_max;
+          block_area_max[static_cast<size_t>(blk)] = area_max;
         }
       },
       1);
@@ -156,9 +156,9 @@ Quality evaluate_quality(const TriMesh& m, const Topology& tp, const VectorXc& z
     q.angle_mean += wang[t];
     q.area_mean += a3[t];
   }
-  for (Index b = 0; b < blocks; ++b) {
-    q.angle_max = std::max(q.angle_max, block_angle_max[static_cast<size_t>(b)]);
-    q.area_max = std::max(q.area_max, block_area_max[static_cast<size_t>(b)]);
+  for (Index blk = 0; blk < blocks; ++blk) {
+    q.angle_max = std::max(q.angle_max, block_angle_max[static_cast<size_t>(blk)]);
+    q.area_max = std::max(q.area_max, block_area_max[static_cast<size_t>(blk)]);
   }
   if (wsum > 0) {
     q.score /= wsum;
