@@ -1,5 +1,6 @@
 #include "wefm/core/sparse_cholesky.hpp"
 #include "wefm/core/nested_dissection.hpp"
+#include "wefm/core/ordering_choice.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <atomic>
@@ -92,20 +93,27 @@ class CholmodLLT : public Eigen::CholmodSupernodalLLT<Matrix, Eigen::Lower> {
   }
 };
 
+// The factor entries and flops of P K P^T (CHOLMOD's Common lnz and fl) for the order perm: its
+// elimination tree and column counts only, a fraction of a symbolic analysis.
+template <class Matrix>
+static bool count_order(cholmod_common& c, const Matrix& K, std::vector<int>& perm) {
+  cholmod_sparse A = Eigen::viewAsCholmod(K.template selfadjointView<Eigen::Lower>());
+  const size_t n = static_cast<size_t>(K.rows());
+  std::vector<int> parent(n), post(n), count(n), first(n), level(n);
+  return cholmod_analyze_ordering(&A, CHOLMOD_GIVEN, perm.data(), nullptr, 0, parent.data(), post.data(), count.data(), first.data(),
+                                  level.data(), &c) != 0;
+}
+
 // The ordering: AMD; when its fill is poor by CHOLMOD's test (the one after which CHOLMOD's default
-// strategy runs METIS) or doubtful (kDoubtfulFlops), a geometric nested dissection on `points`,
-// kept when it is not poor and needs fewer flops than AMD's; when both are poor, or there are no
-// points, CHOLMOD's default (AMD, then METIS). The AMD case gives CHOLMOD's default result.
+// strategy runs METIS) or doubtful, a geometric nested dissection on `points`, kept when it is
+// acceptable and, against a usable AMD order, needs fewer flops (counted before it is analysed);
+// ordering_choice.hpp has the rule. When neither will do, or there are no points, CHOLMOD's
+// default (AMD, then METIS). The AMD case gives CHOLMOD's default result.
 template <class LLT, class Matrix>
 static void analyze_ordered(LLT& llt, const Matrix& K, const std::vector<Vec3>& points) {
   cholmod_common& c = llt.cholmod();
   const double anz = 0.5 * static_cast<double>(K.nonZeros() + K.rows());
-  auto poor = [&] { return c.lnz >= 5 * anz && c.fl >= 500 * c.lnz; };
-  // Flops per factor entry above which AMD's order is worth comparing with the dissection's. The
-  // dissection gives about 310 on the faces measured (1M disk and cylinder); AMD gave 222 on the
-  // 1M plate (kept, without a second analysis), 427 on a 1M cylinder cut along its seam (15.4
-  // GFlop, 36.1M entries, against the dissection's 8.5 GFlop, 27.1M) and 666 on the disk (poor).
-  constexpr double kDoubtfulFlops = 300;
+  const double n = static_cast<double>(K.rows());
   if (points.size() != static_cast<size_t>(K.rows())) {
     llt.analyzePattern(K);
     return;
@@ -114,18 +122,27 @@ static void analyze_ordered(LLT& llt, const Matrix& K, const std::vector<Vec3>& 
   c.nmethods = 1;
   c.method[0].ordering = CHOLMOD_AMD;
   llt.analyze_with(K, nullptr);
-  const bool amd_ok = llt.factor() && !poor();
-  const double amd_fl = c.fl;
-  bool done = amd_ok && !(c.lnz >= 5 * anz && c.fl >= kDoubtfulFlops * c.lnz);
+  const OrderCounts amd{c.lnz, c.fl};
+  const bool amd_ok = llt.factor() && !poor_order(amd, anz);
+  bool done = amd_ok && !doubtful_order(amd, anz);
   if (!done) {
     std::vector<int> perm = geometric_nested_dissection(K.outerIndexPtr(), K.innerIndexPtr(), points);
-    c.method[0].ordering = CHOLMOD_GIVEN;
-    llt.analyze_with(K, perm.data());
-    done = llt.factor() && !poor() && (!amd_ok || c.fl < amd_fl);
-    if (!done && amd_ok) {
-      c.method[0].ordering = CHOLMOD_AMD;
-      llt.analyze_with(K, nullptr);
+    if (!amd_ok) {
+      // AMD's order goes whatever the dissection's counts: analyse the dissection straight away.
+      c.method[0].ordering = CHOLMOD_GIVEN;
+      llt.analyze_with(K, perm.data());
+      done = llt.factor() && dissection_acceptable({c.lnz, c.fl}, anz, n);
+    } else if (count_order(c, K, perm) && dissection_acceptable({c.lnz, c.fl}, anz, n) && c.fl < amd.fl) {
+      // AMD's doubtful order loses: only now is the dissection analysed.
+      c.method[0].ordering = CHOLMOD_GIVEN;
+      llt.analyze_with(K, perm.data());
       done = llt.factor() != nullptr;
+    } else {
+      // AMD's analysis is still the factor's (the 4M plate: 3.4 -> 2.3 s of analysis without the
+      // dissection's symbolic analysis and a second one of AMD's); its counts go back.
+      c.lnz = amd.lnz;
+      c.fl = amd.fl;
+      done = true;
     }
   }
   c.nmethods = saved_nmethods;
@@ -182,7 +199,7 @@ struct SparseCholeskyT<Scalar>::Impl {
     if (use_cholmod) use_huge_pages_in_suitesparse();
     // Ordering: AMD; where its fill is poor (CHOLMOD's test) a geometric nested dissection when
     // the caller gave points (set_ordering_points); METIS (CHOLMOD's default fallback) when that is
-    // poor too. On the 1M disk the boundary term's couplings along the loop make AMD's fill poor
+    // poor too and beyond a planar graph's growth (ordering_choice.hpp). On the 1M disk the boundary term's couplings along the loop make AMD's fill poor
     // (44M factor entries, 29 GFlop; 26M without the boundary term); METIS took 2.7 s of analysis
     // for 25.2M entries (7.4 GFlop), the nested dissection takes 0.2 s for 27M. On the 1M plate
     // AMD's fill passes (16.5M, 3.7 GFlop, 0.3 s) and is kept. Cheap renumberings before AMD, METIS
