@@ -22,9 +22,15 @@ constexpr double kPlanarFlops = 50;
 
 }  // namespace
 
-bool poor_order(const OrderCounts& o, double anz) { return o.lnz >= 5 * anz && o.fl >= 500 * o.lnz; }
+// CHOLMOD's form of the test: at least 5 factor entries per matrix entry, each costing at least
+// flops_per_entry.
+static bool costly_fill(const OrderCounts& o, double anz, double flops_per_entry) {
+  return o.lnz >= 5 * anz && o.fl >= flops_per_entry * o.lnz;
+}
 
-bool doubtful_order(const OrderCounts& o, double anz) { return o.lnz >= 5 * anz && o.fl >= kDoubtfulFlops * o.lnz; }
+bool poor_order(const OrderCounts& o, double anz) { return costly_fill(o, anz, 500); }
+
+bool doubtful_order(const OrderCounts& o, double anz) { return costly_fill(o, anz, kDoubtfulFlops); }
 
 bool dissection_acceptable(const OrderCounts& nd, double anz, double n) {
   return !poor_order(nd, anz) || nd.fl <= kPlanarFlops * std::pow(n, 1.5);

@@ -127,16 +127,14 @@ static void analyze_ordered(LLT& llt, const Matrix& K, const std::vector<Vec3>& 
   bool done = amd_ok && !doubtful_order(amd, anz);
   if (!done) {
     std::vector<int> perm = geometric_nested_dissection(K.outerIndexPtr(), K.innerIndexPtr(), points);
-    if (!amd_ok) {
-      // AMD's order goes whatever the dissection's counts: analyse the dissection straight away.
+    // A poor AMD order goes whatever the dissection's counts, so the dissection is analysed straight
+    // away and judged after; against a usable one it is counted first and analysed only if it wins.
+    const bool analyse_dissection =
+        !amd_ok || (count_order(c, K, perm) && dissection_acceptable({c.lnz, c.fl}, anz, n) && c.fl < amd.fl);
+    if (analyse_dissection) {
       c.method[0].ordering = CHOLMOD_GIVEN;
       llt.analyze_with(K, perm.data());
-      done = llt.factor() && dissection_acceptable({c.lnz, c.fl}, anz, n);
-    } else if (count_order(c, K, perm) && dissection_acceptable({c.lnz, c.fl}, anz, n) && c.fl < amd.fl) {
-      // AMD's doubtful order loses: only now is the dissection analysed.
-      c.method[0].ordering = CHOLMOD_GIVEN;
-      llt.analyze_with(K, perm.data());
-      done = llt.factor() != nullptr;
+      done = llt.factor() && (amd_ok || dissection_acceptable({c.lnz, c.fl}, anz, n));
     } else {
       // AMD's analysis is still the factor's (the 4M plate: 3.4 -> 2.3 s of analysis without the
       // dissection's symbolic analysis and a second one of AMD's); its counts go back.
@@ -199,8 +197,9 @@ struct SparseCholeskyT<Scalar>::Impl {
     if (use_cholmod) use_huge_pages_in_suitesparse();
     // Ordering: AMD; where its fill is poor (CHOLMOD's test) a geometric nested dissection when
     // the caller gave points (set_ordering_points); METIS (CHOLMOD's default fallback) when that is
-    // poor too and beyond a planar graph's growth (ordering_choice.hpp). On the 1M disk the boundary term's couplings along the loop make AMD's fill poor
-    // (44M factor entries, 29 GFlop; 26M without the boundary term); METIS took 2.7 s of analysis
+    // poor too and beyond a planar graph's growth (ordering_choice.hpp). On the 1M disk the
+    // boundary term's couplings along the loop make AMD's fill poor (44M factor entries, 29 GFlop;
+    // 26M without the boundary term); METIS took 2.7 s of analysis
     // for 25.2M entries (7.4 GFlop), the nested dissection takes 0.2 s for 27M. On the 1M plate
     // AMD's fill passes (16.5M, 3.7 GFlop, 0.3 s) and is kept. Cheap renumberings before AMD, METIS
     // on a coarsened graph and METIS's own options were measured and dropped (docs/PERFORMANCE.md).
