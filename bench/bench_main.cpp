@@ -328,6 +328,7 @@ int main(int argc, char** argv) {
         continue;
       }
       results["command"] = results.value("command", "") + "` and `" + part.value("command", "");
+      results["date"] = results.value("date", "") + " and " + part.value("date", "");
       results["load_end"] = part["load_end"];
       for (const char* list : {"cases", "cli"})
         for (const Json& c : part[list]) {
