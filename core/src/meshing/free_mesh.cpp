@@ -19,6 +19,50 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // Triangles the front left with sqrt(3) circumradius / size above this get their circumcentre.
 constexpr double kRefineRatio = 1.6;
 
+// Boundary nodes closer than this fraction of the domain's extent are one node: the two sides of a
+// scar (a repeated edge kept closed) lie on each other up to the solve's rounding.
+constexpr double kSameNode = 1e-9;
+
+// The loops' nodes as the triangulation's boundary: nodes at one point merged into one (their
+// segments then come in both directions: a scar, meshed as an edge inside the domain), segments
+// that merging shrank to a point dropped.
+void boundary_nodes(const std::vector<LoopNodes>& loops, std::vector<P2>& pts, std::vector<Vec3>& xyz,
+                    std::vector<std::array<Index, 2>>& segs) {
+  std::vector<P2> all;
+  for (const LoopNodes& l : loops) all.insert(all.end(), l.uv.begin(), l.uv.end());
+  P2 lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const P2& p : all) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double tol = all.empty() ? 0 : kSameNode * (hi - lo).norm();
+  std::vector<size_t> order(all.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return all[a].x() < all[b].x(); });
+  std::vector<Index> node(all.size(), -1);
+  std::vector<size_t> first_of;  // a representative loop node per merged node
+  for (size_t i = 0; i < order.size(); ++i) {
+    const size_t a = order[i];
+    if (node[a] >= 0) continue;
+    node[a] = static_cast<Index>(first_of.size());
+    first_of.push_back(a);
+    for (size_t j = i + 1; j < order.size() && all[order[j]].x() - all[a].x() <= tol; ++j)
+      if (node[order[j]] < 0 && (all[order[j]] - all[a]).norm() <= tol) node[order[j]] = node[a];
+  }
+  std::vector<const Vec3*> at(all.size());
+  size_t base = 0;
+  for (const LoopNodes& l : loops) {
+    const size_t n = l.uv.size();
+    for (size_t k = 0; k < n; ++k) {
+      at[base + k] = &l.xyz[k];
+      const Index a = node[base + k], b = node[base + (k + 1) % n];
+      if (a != b) segs.push_back({a, b});
+    }
+    base += n;
+  }
+  for (size_t r : first_of) {
+    pts.push_back(all[r]);
+    xyz.push_back(*at[r]);
+  }
+}
+
 }  // namespace
 
 void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, DomainMesh& out,
@@ -29,14 +73,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   auto t0 = std::chrono::steady_clock::now();
   std::vector<P2> pts;
   std::vector<std::array<Index, 2>> segs;
-  for (const LoopNodes& l : loops) {
-    const Index base = static_cast<Index>(pts.size()), n = static_cast<Index>(l.uv.size());
-    for (Index k = 0; k < n; ++k) {
-      pts.push_back(l.uv[static_cast<size_t>(k)]);
-      out.xyz.push_back(l.xyz[static_cast<size_t>(k)]);
-      segs.push_back({base + k, base + (k + 1) % n});
-    }
-  }
+  boundary_nodes(loops, pts, out.xyz, segs);
   out.boundary_nodes = static_cast<Index>(pts.size());
   Triangulation tr(pts, segs);
   const SizeField field(loops, o.size, kSizeGradation);

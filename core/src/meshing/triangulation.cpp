@@ -61,7 +61,15 @@ Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<st
   for (size_t k = 0; k < points.size(); ++k)
     if (insert(points[k], last_) < 0)
       fail(Errc::invalid_state, "boundary node " + std::to_string(k) + " coincides with another node: the domain boundary touches itself");
-  for (const auto& s : segments) recover(s[0] + kSuper, s[1] + kSuper);
+  std::set<std::pair<Index, Index>> seen;
+  for (const auto& s : segments) {
+    const std::pair<Index, Index> key = std::minmax(s[0] + kSuper, s[1] + kSuper);
+    if (!seen.insert(key).second) {
+      scars_.insert(key);
+      continue;
+    }
+    recover(s[0] + kSuper, s[1] + kSuper);
+  }
   // Lawson flips restore the constrained Delaunay property after the recovery flips.
   std::deque<std::pair<Index, int>> q;
   for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
@@ -328,7 +336,9 @@ void Triangulation::mark_inside() {
     for (int i = 0; i < 3; ++i) {
       const Index s = tris_[t].n[i];
       if (s < 0 || parity[s] >= 0) continue;
-      parity[s] = parity[t] ^ (tris_[t].c[i] ? 1 : 0);
+      // Across a boundary segment inside turns to outside and back; a scar has the domain on both sides.
+      const bool flips = tris_[t].c[i] && !scars_.count(std::minmax(tris_[t].v[nx(i)], tris_[t].v[pv(i)]));
+      parity[s] = parity[t] ^ (flips ? 1 : 0);
       q.push_back(s);
     }
   }

@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include "wefm/core/meshing/predicates.hpp"
@@ -15,9 +17,11 @@ namespace wefm::meshing {
 
 class Triangulation {
  public:
-  // Boundary nodes and the segments joining them (closed loops). Throws Error(invalid_state) when
-  // the boundary touches itself (two nodes at one point, a node on another segment) and
-  // Error(internal) if a segment still cannot be recovered.
+  // Boundary nodes and the segments joining them (closed loops). A segment given both ways (a, b)
+  // and (b, a) is a scar: the boundary runs along both of its sides, so it is an edge of the mesh
+  // with the domain on both sides (a seam kept closed, a hard edge inside a face). Throws
+  // Error(invalid_state) when the boundary touches itself otherwise (two nodes at one point, a node
+  // on another segment) and Error(internal) if a segment still cannot be recovered.
   Triangulation(const std::vector<P2>& points, const std::vector<std::array<Index, 2>>& segments);
 
   // Node numbers are the caller's: 0..points.size()-1 the boundary, then inserted nodes. `hint`
@@ -80,6 +84,7 @@ class Triangulation {
   std::vector<Index> free_;
   Index last_ = 0;
   std::vector<char> mark_;
+  std::set<std::pair<Index, Index>> scars_;  // internal node pairs (smaller first) of scar segments
 };
 
 }  // namespace wefm::meshing
