@@ -10,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -29,6 +28,7 @@
 #include "cad_wefm.hpp"
 #include "flatten_settings.hpp"
 #include "model_mesh.hpp"
+#include "output_file.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #endif
@@ -124,7 +124,7 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   int32_t has = 0;
   wefm_face_has_result(raw, &has);
   if (st != WEFM_OK && !(st == WEFM_ERROR_NOT_CONVERGED && has))
-    return fail(st == WEFM_ERROR_CANCELLED ? kExitCancelled : kExitSolver,
+    return fail(st == WEFM_ERROR_CANCELLED ? stop_exit_code() : kExitSolver,
                 std::string("flatten: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
   wefm_report rep;
   wefm_report_init(&rep, sizeof rep);
@@ -145,11 +145,14 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   }
   const auto t1 = Clock::now();
   wefm_domain_mesh* dm_raw = nullptr;
-  st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+  {
+    WatchedFace watched(&watcher, raw);
+    st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+  }
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
   r.time_mesh = since(t1);
   if (st != WEFM_OK || !dm_raw)
-    return fail(st == WEFM_ERROR_CANCELLED ? kExitCancelled : kExitSolver,
+    return fail(st == WEFM_ERROR_CANCELLED ? stop_exit_code() : kExitSolver,
                 std::string("mesh: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
   wefm_mesh_report_init(&r.report, sizeof r.report);
   wefm_domain_mesh_get_report(dm_raw, &r.report);
@@ -235,12 +238,18 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     }
   const bool quiet = args.has("quiet");
   const std::string model_path = args.positionals[0];
+  std::vector<NamedPath> outputs = {{"-o", out_path}};
+  if (args.has("report")) outputs.push_back({"--report", args.value("report")});
+  if (!check_output_paths({{"MODEL", model_path}}, outputs, error)) {
+    std::fprintf(stderr, "wefm mesh-model: %s\n", error.c_str());
+    return kExitUsage;
+  }
   const auto t_start = Clock::now();
 
   wefm_cad::CadModel model;
-  if (!load_cad_model_via_plugin(model_path, tess, model, error)) {
+  if (const int code = load_cad_model_via_plugin(model_path, tess, model, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return kExitIo;
+    return code;
   }
   if (args.has("size-ratio")) size *= model.bbox_diagonal;
   const auto t_edges = Clock::now();
@@ -263,7 +272,6 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   tf_options.type = WEFM_MESH_TRANSFINITE;
   tf_options.quads = 1;
 
-  install_interrupt_handler();
   CancelWatcher watcher;
   std::vector<FaceMeshRun> runs(model.faces.size());
   for (size_t i = 0; i < runs.size(); ++i) runs[i].face = &model.faces[i];
@@ -295,6 +303,12 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   int64_t collapsed = 0;
   for (const FaceMeshRun& r : runs)
     if (!r.tris.empty()) collapsed += whole.add_face(r.face->index, r.xyz, r.tris);
+  // Each model edge is used once per edge use in the faces' loops (a seam twice by its face).
+  std::map<long long, int> face_uses;
+  for (const wefm_cad::CadFace& f : model.faces)
+    for (const auto& loop : f.loops)
+      for (const wefm_cad::CadEdgeUse& u : loop) ++face_uses[f.edges[static_cast<size_t>(u.edge)].id];
+  for (const auto& [id, en] : edge_nodes) whole.expect_model_edge(en.xyz, face_uses[id]);
   const ConformityCounts conf = whole.conformity();
   const LambdaStats q = whole.lambda();
   int exit_code = kExitOk;
@@ -317,15 +331,29 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     exit_code = std::max(exit_code, r.exit_code);
   }
   std::printf("model: %lld nodes, %lld triangles, lambda_mesh %.4f, min lambda %.4f, %.1f%% below 0.6; %lld edges, "
-              "%lld open, %lld non-manifold; %d faces failed; %.2f s (read %.2f, BRepMesh %.2f, edges %.3f, faces %.2f with -j %zu)\n",
+              "%lld open, %lld non-manifold (%lld, %lld not explained by the B-rep); %d faces failed; %.2f s (read %.2f, BRepMesh %.2f, edges %.3f, faces %.2f with -j %zu)\n",
               static_cast<long long>(whole.nodes()), static_cast<long long>(whole.triangles()), q.lambda_mesh, q.lambda_min,
               100 * q.fraction_below_0_6, static_cast<long long>(conf.edges), static_cast<long long>(conf.open_edges),
-              static_cast<long long>(conf.non_manifold_edges), failed, time_total, model.time_read, model.time_mesh, time_edges,
+              static_cast<long long>(conf.non_manifold_edges), static_cast<long long>(conf.unexplained_open_edges),
+              static_cast<long long>(conf.unexplained_non_manifold_edges), failed, time_total, model.time_read, model.time_mesh, time_edges,
               time_faces, n_threads);
   for (const FaceMeshRun& r : runs)
     if (!r.reason.empty())
       std::fprintf(stderr, "wefm: %s face %d (%s): %s\n", model_path.c_str(), r.face->index, r.face->surface_type.c_str(),
                    r.reason.c_str());
+  if (conf.defects()) {
+    // Not a success: the mesh is written so the defect can be looked at, but the exit says so.
+    std::string list;
+    for (size_t k = 0; k < conf.defect_faces.size() && k < 20; ++k) list += (k ? ", f" : "f") + std::to_string(conf.defect_faces[k]);
+    if (conf.defect_faces.size() > 20) list += ", ...";
+    std::fprintf(stderr,
+                 "wefm: %s: the mesh does not conform to the model: %lld open and %lld non-manifold edges the B-rep does not "
+                 "explain, %lld zero-area triangles (faces %s)\n",
+                 model_path.c_str(), static_cast<long long>(conf.unexplained_open_edges),
+                 static_cast<long long>(conf.unexplained_non_manifold_edges), static_cast<long long>(conf.zero_area_triangles),
+                 list.c_str());
+    exit_code = std::max<int>(exit_code, kExitSolver);
+  }
 
   if (args.has("report")) {
     Json rep;
@@ -337,7 +365,12 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     rep["lambda_mesh"] = q.lambda_mesh;
     rep["lambda_min"] = q.lambda_min;
     rep["fraction_below_0_6"] = q.fraction_below_0_6;
+    rep["bbox_diagonal"] = model.bbox_diagonal;
     rep["conformity"] = {{"edges", conf.edges}, {"open_edges", conf.open_edges}, {"non_manifold_edges", conf.non_manifold_edges},
+                         {"brep_edge_segments", conf.brep_edge_segments},
+                         {"unexplained_open_edges", conf.unexplained_open_edges},
+                         {"unexplained_non_manifold_edges", conf.unexplained_non_manifold_edges},
+                         {"zero_area_triangles", conf.zero_area_triangles}, {"defect_faces", conf.defect_faces},
                          {"collapsed_triangles", collapsed}};
     rep["timings"] = {{"total", time_total}, {"read", model.time_read}, {"brepmesh", model.time_mesh},
                       {"import", model.time_extract}, {"edges", time_edges}, {"faces_wall", time_faces}, {"jobs", n_threads}};
@@ -356,15 +389,12 @@ int run_mesh_model(const std::vector<std::string>& argv) {
                        {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
     }
     rep["faces"] = faces;
-    const std::string path = args.value("report");
-    std::ofstream f(path);
-    if (f) f << rep.dump(1) << '\n';
-    if (!f) {
-      std::fprintf(stderr, "wefm: cannot write %s\n", path.c_str());
-      exit_code = std::max<int>(exit_code, kExitIo);
+    if (const int code = write_file_atomically(args.value("report"), rep.dump(1) + '\n', error)) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      exit_code = std::max<int>(exit_code, code);
     }
   }
-  if (interrupted()) exit_code = kExitCancelled;
+  if (interrupted()) exit_code = stop_exit_code();
   return exit_code;
 }
 

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
+#include <sstream>
+
+#include "exit_codes.hpp"
+#include "output_file.hpp"
 
 namespace wefm_cli {
 
@@ -36,9 +39,12 @@ double lo_lambda(const double* a, const double* b, const double* c) {
   return sq > 0 ? 4.0 * std::sqrt(3.0) * area / sq : 0.0;
 }
 
+// Lo's lambda below this is a triangle with no area to speak of: a solver divides by it.
+constexpr double kZeroAreaLambda = 1e-6;
+
 }  // namespace
 
-int32_t ModelMesh::weld(const double* p, int face_tag) {
+int32_t ModelMesh::find(const double* p) const {
   const int64_t ci = static_cast<int64_t>(std::floor(p[0] / tol_)), cj = static_cast<int64_t>(std::floor(p[1] / tol_)),
                 ck = static_cast<int64_t>(std::floor(p[2] / tol_));
   for (int64_t di = -1; di <= 1; ++di)
@@ -51,11 +57,28 @@ int32_t ModelMesh::weld(const double* p, int face_tag) {
             return it->second;
         }
       }
+  return -1;
+}
+
+int32_t ModelMesh::weld(const double* p, int face_tag) {
+  if (const int32_t found = find(p); found >= 0) return found;
   const int32_t id = static_cast<int32_t>(xyz_.size() / 3);
   xyz_.insert(xyz_.end(), p, p + 3);
   node_face_.push_back(face_tag);
-  grid_.emplace(cell_key(ci, cj, ck), id);
+  grid_.emplace(cell_key(static_cast<int64_t>(std::floor(p[0] / tol_)), static_cast<int64_t>(std::floor(p[1] / tol_)),
+                         static_cast<int64_t>(std::floor(p[2] / tol_))),
+                id);
   return id;
+}
+
+void ModelMesh::expect_model_edge(const std::vector<double>& nodes, int face_uses) {
+  // A node no face mesh holds (its faces failed) leaves its segments undeclared: their absence is
+  // then counted where the faces' other edges are, not here.
+  for (size_t k = 0; k + 5 < nodes.size(); k += 3) {
+    const int32_t a = find(&nodes[k]), b = find(&nodes[k + 3]);
+    if (a < 0 || b < 0 || a == b) continue;
+    expected_uses_[pair_key(a, b)] += face_uses;
+  }
 }
 
 int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
@@ -115,11 +138,32 @@ ConformityCounts ModelMesh::conformity() const {
     for (int c = 0; c < 3; ++c) ++uses[pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])];
   ConformityCounts out;
   out.edges = static_cast<int64_t>(uses.size());
+  std::unordered_map<uint64_t, char> defect_edges;
   for (const auto& [key, n] : uses) {
-    (void)key;
     out.open_edges += n == 1;
     out.non_manifold_edges += n > 2;
+    const auto it = expected_uses_.find(key);
+    const int want = it == expected_uses_.end() ? 2 : it->second;
+    out.brep_edge_segments += it != expected_uses_.end();
+    if (n != want) defect_edges.emplace(key, 1);
+    out.unexplained_open_edges += n < want;
+    out.unexplained_non_manifold_edges += n > want;
   }
+  // A model-edge segment no triangle uses at all is a gap as well (both faces left it out).
+  for (const auto& [key, want] : expected_uses_)
+    if (!uses.count(key)) out.unexplained_open_edges += 1;
+  std::vector<int> faces;
+  for (size_t t = 0; t + 2 < tris_.size(); t += 3) {
+    bool bad = lo_lambda(&xyz_[3 * static_cast<size_t>(tris_[t])], &xyz_[3 * static_cast<size_t>(tris_[t + 1])],
+                         &xyz_[3 * static_cast<size_t>(tris_[t + 2])]) < kZeroAreaLambda;
+    out.zero_area_triangles += bad;
+    for (int c = 0; c < 3 && !bad; ++c)
+      bad = defect_edges.count(pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])) > 0;
+    if (bad) faces.push_back(tri_face_[t / 3]);
+  }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  out.defect_faces = std::move(faces);
   return out;
 }
 
@@ -148,11 +192,7 @@ LambdaStats ModelMesh::lambda_of(const std::vector<double>& xyz, const std::vect
 LambdaStats ModelMesh::lambda() const { return lambda_of(xyz_, tris_); }
 
 bool ModelMesh::write_msh(const std::string& path, std::string& error) const {
-  std::ofstream out(path);
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
+  std::ostringstream out;
   char buf[256];
   out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << face_tags_.size() << '\n';
   for (int f : face_tags_) out << "2 " << f << " \"face_" << f << "\"\n";
@@ -194,20 +234,11 @@ bool ModelMesh::write_msh(const std::string& path, std::string& error) const {
     for (size_t t : ts) out << t + 1 << ' ' << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';
   }
   out << "$EndElements\n";
-  out.flush();
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
-  return true;
+  return write_file_atomically(path, out.str(), error) == kExitOk;
 }
 
 bool ModelMesh::write_obj(const std::string& path, std::string& error) const {
-  std::ofstream out(path);
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
+  std::ostringstream out;
   char buf[96];
   for (size_t v = 0; v + 2 < xyz_.size(); v += 3) {
     std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", xyz_[v], xyz_[v + 1], xyz_[v + 2]);
@@ -221,12 +252,7 @@ bool ModelMesh::write_obj(const std::string& path, std::string& error) const {
     }
     out << "f " << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';
   }
-  out.flush();
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
-  return true;
+  return write_file_atomically(path, out.str(), error) == kExitOk;
 }
 
 }  // namespace wefm_cli

@@ -16,6 +16,15 @@ struct ConformityCounts {
   int64_t edges = 0;
   int64_t open_edges = 0;          // used by one triangle: the model's free edges, or a gap
   int64_t non_manifold_edges = 0;  // used by more than two
+  // Against the B-rep: a mesh edge on a model edge should be used once per face use of that edge
+  // (one on a shell's free edge, two on a closed solid, more where volumes share it), any other edge
+  // exactly twice. What differs is a defect: a crack, a T-junction or a fold.
+  int64_t brep_edge_segments = 0;  // mesh edges lying on model edges
+  int64_t unexplained_open_edges = 0;          // used fewer times than the B-rep says
+  int64_t unexplained_non_manifold_edges = 0;  // used more times than the B-rep says
+  int64_t zero_area_triangles = 0;
+  std::vector<int> defect_faces;   // faces holding a triangle on an unexplained edge, or a zero-area one
+  bool defects() const { return unexplained_open_edges || unexplained_non_manifold_edges || zero_area_triangles; }
 };
 
 struct LambdaStats {
@@ -34,6 +43,11 @@ class ModelMesh {
   // three nodes (near the end of a seam).
   int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
 
+  // Declares a model edge: its nodes (3 doubles each, in order, as every face was given them) and how
+  // many face uses it has in the B-rep. Call after the faces are added; conformity() then checks the
+  // mesh against it.
+  void expect_model_edge(const std::vector<double>& nodes, int face_uses);
+
   ConformityCounts conformity() const;
   LambdaStats lambda() const;
   static LambdaStats lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
@@ -48,6 +62,7 @@ class ModelMesh {
 
  private:
   int32_t weld(const double* p, int face_tag);
+  int32_t find(const double* p) const;  // the welded node at p, or -1
 
   double tol_;
   std::vector<double> xyz_;
@@ -56,6 +71,7 @@ class ModelMesh {
   std::vector<int> tri_face_;
   std::vector<int> face_tags_;          // in order of addition
   std::unordered_multimap<uint64_t, int32_t> grid_;  // welded boundary nodes by grid cell
+  std::unordered_map<uint64_t, int> expected_uses_;  // node pair on a model edge -> face uses
 };
 
 }  // namespace wefm_cli
