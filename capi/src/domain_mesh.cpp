@@ -4,6 +4,7 @@
 #include <string>
 
 #include "handles.hpp"
+#include "wefm/core/atomic_file.hpp"
 #include "wefm/core/meshing/domain_mesh.hpp"
 
 struct wefm_domain_mesh {
@@ -141,19 +142,25 @@ WEFM_API wefm_status wefm_domain_mesh_write_obj(const wefm_domain_mesh* mesh, co
   WEFM_REQUIRE(mesh, "wefm_domain_mesh_write_obj");
   WEFM_REQUIRE(path, "wefm_domain_mesh_write_obj");
   return guarded(nullptr, [&] {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path, "w"), &std::fclose);
-    if (!f) throw wefm::Error(wefm::Errc::io, std::string("cannot write ") + path);
+    // The text is made first and the file replaced whole (AtomicFile): a full disk or a failed
+    // close is WEFM_ERROR_IO and leaves the previous file.
+    wefm::AtomicFile f(path);
+    std::string text;
+    char line[128];
+    auto put = [&](int n) { text.append(line, static_cast<size_t>(n)); };
     const auto& m = mesh->mesh;
-    std::fprintf(f.get(), "# wefm domain mesh: %zu nodes, %zu elements\n", m.xyz.size(), m.elements.size() / static_cast<size_t>(m.nodes_per_element));
-    for (const auto& p : m.xyz) std::fprintf(f.get(), "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-    for (const auto& p : m.uv) std::fprintf(f.get(), "vt %.17g %.17g\n", p.x(), p.y());
+    put(std::snprintf(line, sizeof line, "# wefm domain mesh: %zu nodes, %zu elements\n", m.xyz.size(),
+                      m.elements.size() / static_cast<size_t>(m.nodes_per_element)));
+    for (const auto& p : m.xyz) put(std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z()));
+    for (const auto& p : m.uv) put(std::snprintf(line, sizeof line, "vt %.17g %.17g\n", p.x(), p.y()));
     const size_t npe = static_cast<size_t>(m.nodes_per_element);
     for (size_t e = 0; e < m.elements.size(); e += npe) {
-      std::fputc('f', f.get());
-      for (size_t k = 0; k < npe; ++k) std::fprintf(f.get(), " %d/%d", m.elements[e + k] + 1, m.elements[e + k] + 1);
-      std::fputc('\n', f.get());
+      text += 'f';
+      for (size_t k = 0; k < npe; ++k) put(std::snprintf(line, sizeof line, " %d/%d", m.elements[e + k] + 1, m.elements[e + k] + 1));
+      text += '\n';
     }
-    if (std::ferror(f.get())) throw wefm::Error(wefm::Errc::io, std::string("error writing ") + path);
+    f.write(text.data(), text.size());
+    f.commit();
   });
 }
 

@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
-#include <cstdio>
 #include <cstring>
-#include <memory>
 
 #include "mesh_io/readers.hpp"
+#include "wefm/core/atomic_file.hpp"
 #include "wefm/core/error.hpp"
 
 namespace wefm {
@@ -23,12 +21,11 @@ std::string lower_ext(const std::string& path) {
 }
 
 // One large buffer filled with std::to_chars and written in 4 MB blocks: per-number stdio or
-// iostream formatting would dominate the time of a million-triangle file.
+// iostream formatting would dominate the time of a million-triangle file. The file is replaced
+// whole on close() or not at all (AtomicFile).
 class ObjWriter {
  public:
-  explicit ObjWriter(const std::string& path) : file_(std::fopen(path.c_str(), "wb"), std::fclose), path_(path), buf_(kBlock + 256) {
-    if (!file_) fail(Errc::io, "cannot open '" + path + "' for writing: " + std::strerror(errno));
-  }
+  explicit ObjWriter(const std::string& path) : file_(path), buf_(kBlock + 256) {}
   void text(const char* s) {
     const std::size_t k = std::strlen(s);
     if (n_ + k > buf_.size()) flush();
@@ -47,17 +44,16 @@ class ObjWriter {
   }
   void close() {
     flush();
-    if (std::fflush(file_.get()) != 0 || std::ferror(file_.get())) fail(Errc::io, "error writing '" + path_ + "': " + std::strerror(errno));
+    file_.commit();
   }
 
  private:
   static constexpr std::size_t kBlock = std::size_t{4} << 20;
   void flush() {
-    if (n_ && std::fwrite(buf_.data(), 1, n_, file_.get()) != n_) fail(Errc::io, "error writing '" + path_ + "': " + std::strerror(errno));
+    file_.write(buf_.data(), n_);
     n_ = 0;
   }
-  std::unique_ptr<FILE, int (*)(FILE*)> file_;
-  std::string path_;
+  AtomicFile file_;
   std::vector<char> buf_;
   std::size_t n_ = 0;
 };
