@@ -1,18 +1,16 @@
 #include "cad_face_files.hpp"
 
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 namespace wefm_cad {
 
-bool write_face_obj(const std::string& path, const CadFace& face, const std::string& model_path, std::string& error) {
-  std::ofstream out(path);
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
-  out << "# face " << face.index << " (" << face.surface_type << ") of " << model_path << "\n";
+std::string face_obj_text(const CadFace& face, const std::string& model_path) {
+  std::ostringstream out;
+  std::string model = model_path;  // a newline in the name would end the comment
+  for (char& c : model) c = c == '\n' || c == '\r' ? ' ' : c;
+  out << "# face " << face.index << " (" << face.surface_type << ") of " << model << "\n";
   char buf[96];
   for (size_t i = 0; i + 2 < face.xyz.size(); i += 3) {
     // %.17g: doubles read back bit for bit.
@@ -21,16 +19,10 @@ bool write_face_obj(const std::string& path, const CadFace& face, const std::str
   }
   for (size_t t = 0; t + 2 < face.triangles.size(); t += 3)
     out << "f " << face.triangles[t] + 1 << ' ' << face.triangles[t + 1] + 1 << ' ' << face.triangles[t + 2] + 1 << '\n';
-  out.flush();
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
-  return true;
+  return out.str();
 }
 
-bool write_face_topology(const std::string& path, const CadFace& face, const std::string& model_path,
-                         std::string& error) {
+std::string face_topology_text(const CadFace& face, const std::string& model_path) {
   nlohmann::ordered_json doc;
   nlohmann::ordered_json edges = nlohmann::ordered_json::array();
   for (const CadEdge& e : face.edges) {
@@ -55,13 +47,7 @@ bool write_face_topology(const std::string& path, const CadFace& face, const std
   doc["model"] = model_path;
   doc["face_index"] = face.index;
   doc["source"] = "wefm model (Open CASCADE import)";
-  std::ofstream out(path);
-  if (out) out << doc.dump(1) << '\n';
-  if (!out) {
-    error = "cannot write " + path;
-    return false;
-  }
-  return true;
+  return doc.dump(1) + '\n';
 }
 
 }  // namespace wefm_cad

@@ -8,9 +8,8 @@
 
 namespace wefm_cad {
 
-// Both return false + message when the file cannot be written.
-bool write_face_obj(const std::string& path, const CadFace& face, const std::string& model_path, std::string& error);
-bool write_face_topology(const std::string& path, const CadFace& face, const std::string& model_path,
-                         std::string& error);
+// The files' text; the tool writes it with its atomic output (apps/wefm/output_file.hpp).
+std::string face_obj_text(const CadFace& face, const std::string& model_path);
+std::string face_topology_text(const CadFace& face, const std::string& model_path);
 
 }  // namespace wefm_cad

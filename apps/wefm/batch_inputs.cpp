@@ -20,6 +20,17 @@ bool is_mesh_file(const fs::path& p) {
   return ext == ".obj" || ext == ".off" || ext == ".stl" || ext == ".ply";
 }
 
+// "faces/a/", "faces/a/." and "." name the folder by its own name, never "" (the outputs would be
+// the hidden files ".obj" and ".json").
+std::string folder_name(const fs::path& dir) {
+  std::error_code ec;
+  fs::path p = fs::weakly_canonical(fs::absolute(dir, ec), ec);
+  if (ec) p = dir.lexically_normal();
+  while (!p.empty() && !p.has_filename() && p.has_relative_path()) p = p.parent_path();
+  const std::string name = p.filename().string();
+  return name.empty() || name == "." || name == ".." ? std::string("face") : name;
+}
+
 bool is_face_folder(const fs::path& dir) {
   std::error_code ec;
   return fs::is_regular_file(dir / "face.obj", ec);
@@ -36,7 +47,7 @@ class Collector {
     const fs::path topo = dir / "topo.json", seam = dir / "face.seam";
     if (use_topology_ && fs::is_regular_file(topo, ec)) item.topology = topo.string();
     else if (fs::is_regular_file(seam, ec) && seams_file_has_data(seam.string())) item.seams = seam.string();
-    add(dir.filename().string(), std::move(item));
+    add(folder_name(dir), std::move(item));
   }
 
   void add_file(const fs::path& file) {
@@ -47,7 +58,8 @@ class Collector {
     seam.replace_extension(".seam");
     std::error_code ec;
     if (fs::is_regular_file(seam, ec) && seams_file_has_data(seam.string())) item.seams = seam.string();
-    add(file.stem().string(), std::move(item));
+    const std::string stem = file.stem().string();
+    add(stem.empty() ? std::string("face") : stem, std::move(item));
   }
 
  private:

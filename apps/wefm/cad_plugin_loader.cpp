@@ -5,9 +5,16 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <string_view>
 #include <vector>
+
+#include "cad_model_wire.hpp"
+#include "child_process.hpp"
+#include "exit_codes.hpp"
+#include "stop.hpp"
 
 namespace wefm_cli {
 
@@ -66,17 +73,52 @@ const wefm_cad::PluginApi* open_plugin(std::string& error) {
 
 }  // namespace
 
-bool load_cad_model_via_plugin(const std::string& path, const wefm_cad::TessellationSettings& settings,
-                               wefm_cad::CadModel& model, std::string& error) {
+int load_cad_model_via_plugin(const std::string& path, const wefm_cad::TessellationSettings& settings,
+                              wefm_cad::CadModel& model, std::string& error) {
   static std::once_flag once;
   static const wefm_cad::PluginApi* api = nullptr;
   static std::string failure;
-  std::call_once(once, [] { api = open_plugin(failure); });
+  std::call_once(once, [] { api = open_plugin(failure); });  // in this process: the child inherits it
   if (!api) {
     error = failure;
-    return false;
+    return kExitIo;
   }
-  return api->load_model(path, settings, model, error);
+  // The child's answer: 'M' and the encoded model, or 'E' and the error message.
+  auto import = [&]() -> std::string {
+    wefm_cad::CadModel m;
+    std::string e;
+    if (!api->load_model(path, settings, m, e)) return "E" + e;
+    return "M" + wefm_cad::encode_cad_model(m);
+  };
+  const double left = seconds_left();
+  const double limit = left >= 0 ? left + 1 : kDefaultImportSeconds;  // the deadline itself stops it first
+  const ChildOutcome child = run_in_child(import, limit);
+  switch (child.kind) {
+    case ChildOutcome::kStopped:
+      error = path + ": CAD import: " + stop_reason();
+      return stop_exit_code();
+    case ChildOutcome::kTimedOut: {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, ": CAD import did not end within %g s (Open CASCADE); --time-limit sets the limit",
+                    limit);
+      error = path + buf;
+      return kExitTimeLimit;
+    }
+    case ChildOutcome::kFailed:
+      error = path + ": CAD import failed: the import process " + child.problem;
+      return kExitIo;
+    case ChildOutcome::kDone: break;
+  }
+  if (!child.bytes.empty() && child.bytes[0] == 'E') {
+    error = child.bytes.substr(1);
+    return kExitIo;
+  }
+  if (child.bytes.empty() || child.bytes[0] != 'M' ||
+      !wefm_cad::decode_cad_model(std::string_view(child.bytes).substr(1), model)) {
+    error = path + ": CAD import failed: the import process handed back no model";
+    return kExitIo;
+  }
+  return kExitOk;
 }
 
 }  // namespace wefm_cli

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -13,6 +12,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "face_job.hpp"
+#include "output_file.hpp"
 #include "output_paths.hpp"
 
 namespace wefm_cli {
@@ -52,6 +52,7 @@ const char* status_text(const FaceOutcome& o, bool started) {
     case kExitInvalid: return "invalid";
     case kExitSolver: return o.snap.has_result ? "not converged" : "solver failed";
     case kExitCancelled: return "cancelled";
+    case kExitTimeLimit: return "time limit";
     default: return "failed";
   }
 }
@@ -92,12 +93,28 @@ int run_batch(const std::vector<std::string>& argv) {
     return kExitIo;
   }
   const std::filesystem::path outdir = args.value("output");
+  if (outdir.empty()) {
+    std::fprintf(stderr, "wefm batch: -o: empty directory name\n");
+    return kExitUsage;
+  }
+  std::vector<NamedPath> inputs, outputs;
+  for (const BatchItem& item : items) {
+    inputs.push_back({"input", item.input});
+    inputs.push_back({"seams of " + item.name, item.seams});
+    inputs.push_back({"topology of " + item.name, item.topology});
+    outputs.push_back({"output of " + item.name, (outdir / (item.name + ".obj")).string()});
+    outputs.push_back({"report of " + item.name, (outdir / (item.name + ".json")).string()});
+  }
+  if (args.has("summary-json")) outputs.push_back({"--summary-json", args.value("summary-json")});
+  if (!check_output_paths(inputs, outputs, error)) {
+    std::fprintf(stderr, "wefm batch: %s\n", error.c_str());
+    return kExitUsage;
+  }
   if (!make_dirs(outdir.string(), error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }
 
-  install_interrupt_handler();
   CancelWatcher watcher;
   std::vector<FaceOutcome> results(items.size());
   std::vector<char> started(items.size(), 0);
@@ -148,7 +165,7 @@ int run_batch(const std::vector<std::string>& argv) {
                 has ? std::to_string(r.flipped_triangles).c_str() : "-",
                 has ? std::to_string(r.boundary_intersections).c_str() : "-", o.time.total,
                 status_text(o, started[i]));
-    const int code = started[i] ? o.exit_code : kExitCancelled;
+    const int code = started[i] ? o.exit_code : stop_exit_code();
     if (code == kExitOk) ++ok;
     exit_code = std::max(exit_code, code);
     nlohmann::ordered_json row;
@@ -172,14 +189,12 @@ int run_batch(const std::vector<std::string>& argv) {
     if (results[i].exit_code != kExitOk)
       std::fprintf(stderr, "wefm: %s: %s\n", items[i].name.c_str(), results[i].error.c_str());
   if (args.has("summary-json")) {
-    std::ofstream out(args.value("summary-json"));
-    if (out) out << rows.dump(2) << '\n';
-    if (!out) {
-      std::fprintf(stderr, "wefm: %s: cannot write summary\n", args.value("summary-json").c_str());
-      exit_code = std::max<int>(exit_code, kExitIo);
+    if (const int code = write_file_atomically(args.value("summary-json"), rows.dump(2) + '\n', error)) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      exit_code = std::max<int>(exit_code, code);
     }
   }
-  if (interrupted()) exit_code = kExitCancelled;
+  if (interrupted()) exit_code = stop_exit_code();
   return exit_code;
 }
 

@@ -72,18 +72,25 @@ int run_flatten(const std::vector<std::string>& argv) {
   s.quiet = args.has("quiet");
   job.input = args.positionals[0];
   job.output_obj = args.value("output");
+  std::vector<NamedPath> outputs = {{"-o", job.output_obj}};
+  for (const char* name : {"write-topology", "report", "svg"})
+    if (args.has(name)) outputs.push_back({std::string("--") + name, args.value(name)});
+  if (!check_output_paths({{"input", job.input}, {"--seams", s.seams_path}, {"--topology", s.topology_path}}, outputs,
+                          error)) {
+    std::fprintf(stderr, "wefm flatten: %s\n", error.c_str());
+    return kExitUsage;
+  }
   for (const std::string* out : {&job.output_obj, &s.write_topology_path, &s.report_path, &s.svg_path}) {
     if (!out->empty() && !make_parent_dirs(*out, error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       return kExitIo;
     }
   }
-  install_interrupt_handler();
-  CancelWatcher watcher;
+  CancelWatcher watcher;  // the handlers are main()'s (stop.hpp)
   job.watcher = &watcher;
   job.show_progress = !s.quiet;
   const FaceOutcome outcome = run_face_job(job);
-  if (!s.quiet && outcome.exit_code != kExitCancelled && (outcome.snap.has_result || outcome.topology_built))
+  if (!s.quiet && !is_stop_code(outcome.exit_code) && (outcome.snap.has_result || outcome.topology_built))
     print_summary(job.input, outcome);
   std::fflush(stdout);
   for (const std::string& w : outcome.warnings) std::fprintf(stderr, "wefm: warning: %s\n", w.c_str());

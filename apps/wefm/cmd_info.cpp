@@ -5,6 +5,7 @@
 #include "args.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
+#include "stop.hpp"
 #include "wefm/wefm.h"
 
 namespace wefm_cli {
@@ -89,6 +90,11 @@ int run_info(const std::vector<std::string>& argv) {
   if (st != WEFM_OK) {
     std::fprintf(stderr, "wefm: cannot read %s: %s [%s]\n", path.c_str(), wefm_last_error(), wefm_status_string(st));
     return st == WEFM_ERROR_INVALID_MESH ? kExitInvalid : kExitIo;
+  }
+  if (interrupted()) {  // the read cannot be interrupted; what it found is not printed after a stop
+    wefm_mesh_release(mesh);
+    std::fprintf(stderr, "wefm: %s: %s\n", path.c_str(), stop_reason().c_str());
+    return stop_exit_code();
   }
   wefm_mesh_info info;
   wefm_mesh_info_init(&info);

@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -12,6 +11,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "flatten_settings.hpp"
+#include "output_file.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "seams_file.hpp"
@@ -86,9 +86,8 @@ double lo_lambda(const double* a, const double* b, const double* c) {
   return s > 0 ? 4 * std::sqrt(3.0) * area / s : 0;
 }
 
-bool write_domain_obj(const std::string& path, const MeshArrays& m) {
-  std::ofstream f(path);
-  if (!f) return false;
+int write_domain_obj(const std::string& path, const MeshArrays& m, std::string& error) {
+  std::ostringstream f;
   f.precision(17);
   f << "# wefm 2D domain mesh: v u v 0\n";
   for (size_t i = 0; i + 1 < m.uv.size(); i += 2) f << "v " << m.uv[i] << ' ' << m.uv[i + 1] << " 0\n";
@@ -97,17 +96,16 @@ bool write_domain_obj(const std::string& path, const MeshArrays& m) {
     for (int k = 0; k < m.npe; ++k) f << ' ' << m.elements[e + static_cast<size_t>(k)] + 1;
     f << '\n';
   }
-  return static_cast<bool>(f);
+  return write_file_atomically(path, f.str(), error);
 }
 
 // Elements coloured from red (lambda 0.6 or less) to green (1); quads by their worse half.
-bool write_mesh_svg(const std::string& path, const MeshArrays& m) {
+int write_mesh_svg(const std::string& path, const MeshArrays& m, std::string& error) {
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (size_t i = 0; i + 1 < m.uv.size(); i += 2)
     for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], m.uv[i + static_cast<size_t>(k)]), hi[k] = std::max(hi[k], m.uv[i + static_cast<size_t>(k)]);
   const double w = std::max(hi[0] - lo[0], 1e-300), h = std::max(hi[1] - lo[1], 1e-300), scale = 1000.0 / std::max(w, h);
-  std::ofstream f(path);
-  if (!f) return false;
+  std::ostringstream f;
   f << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w * scale + 20 << "\" height=\"" << h * scale + 20 << "\">\n";
   const size_t npe = static_cast<size_t>(m.npe);
   for (size_t e = 0; e < m.elements.size(); e += npe) {
@@ -124,12 +122,14 @@ bool write_mesh_svg(const std::string& path, const MeshArrays& m) {
     f << "\"/>\n";
   }
   f << "</svg>\n";
-  return static_cast<bool>(f);
+  return write_file_atomically(path, f.str(), error);
 }
 
 class MeshRun {
  public:
   explicit MeshRun(const FlattenSettings& s) : s_(s) {}
+  MeshRun(const MeshRun&) = delete;
+  MeshRun& operator=(const MeshRun&) = delete;
   int code = kExitOk;
   std::string error;
 
@@ -180,15 +180,15 @@ class MeshRun {
       if (index < 0 || index > 2147483647LL || wefm_face_set_edge_mode(rf, static_cast<int32_t>(index), mode) != WEFM_OK)
         return fail(kExitUsage, "--edge-mode-of " + std::to_string(edge) + ": " + face_error());
     }
+    if (interrupted()) return fail(stop_exit_code(), input + ": " + stop_reason());
     const auto t0 = Clock::now();
     wefm_status ss;
     {
-      CancelWatcher watcher;
-      WatchedFace watched(&watcher, rf);
+      WatchedFace watched(&watcher_, rf);
       ss = wefm_face_solve(rf);
     }
     time_solve = since(t0);
-    if (ss == WEFM_ERROR_CANCELLED || (ss != WEFM_OK && interrupted())) return fail(kExitCancelled, input + ": cancelled");
+    if (ss == WEFM_ERROR_CANCELLED || interrupted()) return fail(stop_exit_code(), input + ": " + stop_reason());
     int32_t has = 0;
     wefm_face_has_result(rf, &has);
     if (ss != WEFM_OK && !(ss == WEFM_ERROR_NOT_CONVERGED && has))
@@ -201,7 +201,16 @@ class MeshRun {
 
   bool mesh(const wefm_mesh_options& o) {
     wefm_domain_mesh* raw = nullptr;
-    if (wefm_face_mesh_domain(face_.get(), &o, &raw) != WEFM_OK) {
+    wefm_status ms;
+    {
+      WatchedFace watched(&watcher_, face_.get());
+      ms = wefm_face_mesh_domain(face_.get(), &o, &raw);
+    }
+    if (ms == WEFM_ERROR_CANCELLED || interrupted()) {
+      wefm_domain_mesh_release(raw);
+      return fail(stop_exit_code(), "meshing: " + stop_reason());
+    }
+    if (ms != WEFM_OK) {
       const std::string m = face_error();
       return fail(m.find("unsupported") != std::string::npos || m.find("needs a face") != std::string::npos ? kExitInvalid : kExitUsage,
                   "meshing failed: " + m);
@@ -226,6 +235,7 @@ class MeshRun {
 
  private:
   const FlattenSettings& s_;
+  CancelWatcher watcher_;  // calls wefm_face_cancel on a stop request, in the solve and in the meshing
   std::unique_ptr<wefm_mesh, MeshDeleter> mesh_;
   std::unique_ptr<wefm_face, FaceDeleter> face_;
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm_;
@@ -302,12 +312,18 @@ int run_mesh(const std::vector<std::string>& argv) {
   const std::string input = args.positionals[0], out = args.value("output");
   const std::string domain = args.has("domain-obj") ? args.value("domain-obj") : default_domain_path(out);
   const std::string report_path = opt("report"), svg = opt("svg");
+  std::vector<NamedPath> outputs = {{"-o", out}, {args.has("domain-obj") ? "--domain-obj" : "the domain mesh (-o's .domain.obj)", domain}};
+  for (const char* name : {"report", "svg"})
+    if (args.has(name)) outputs.push_back({std::string("--") + name, args.value(name)});
+  if (!check_output_paths({{"input", input}, {"--seams", s.seams_path}, {"--topology", s.topology_path}}, outputs, error)) {
+    std::fprintf(stderr, "wefm mesh: %s\n", error.c_str());
+    return kExitUsage;
+  }
   for (const std::string* p : {&out, &domain, &report_path, &svg})
     if (!p->empty() && !make_parent_dirs(*p, error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       return kExitIo;
     }
-  install_interrupt_handler();
   MeshRun run(s);
   const auto t0 = Clock::now();
   if (!run.flatten(input) || !run.mesh(mo)) {
@@ -315,17 +331,24 @@ int run_mesh(const std::vector<std::string>& argv) {
     return run.code;
   }
   const double t_mesh = since(t0) - run.time_solve;
-  if (wefm_domain_mesh_write_obj(run.domain_mesh(), out.c_str()) != WEFM_OK) {
+  if (interrupted()) {
+    std::fprintf(stderr, "wefm: %s: %s\n", input.c_str(), stop_reason().c_str());
+    return stop_exit_code();
+  }
+  // The library writes the OBJ itself (temporary + rename, WEFM_ERROR_IO when anything fails).
+  if (const wefm_status ws = wefm_domain_mesh_write_obj(run.domain_mesh(), out.c_str()); ws != WEFM_OK) {
     std::fprintf(stderr, "wefm: cannot write %s: %s\n", out.c_str(), wefm_last_error());
-    return kExitIo;
+    return exit_code_for(ws) == kExitUsage ? kExitIo : exit_code_for(ws);
   }
-  if (!write_domain_obj(domain, run.arrays)) {
-    std::fprintf(stderr, "wefm: cannot write %s\n", domain.c_str());
-    return kExitIo;
+  if (const int code = write_domain_obj(domain, run.arrays, error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return code;
   }
-  if (!svg.empty() && !write_mesh_svg(svg, run.arrays)) {
-    std::fprintf(stderr, "wefm: cannot write %s\n", svg.c_str());
-    return kExitIo;
+  if (!svg.empty()) {
+    if (const int code = write_mesh_svg(svg, run.arrays, error)) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      return code;
+    }
   }
   const wefm_mesh_report& r = run.report;
   if (!report_path.empty()) {
@@ -343,11 +366,9 @@ int run_mesh(const std::vector<std::string>& argv) {
     j["outputs"] = {{"mesh", out}, {"domain_mesh", domain}};
     if (!svg.empty()) j["outputs"]["svg"] = svg;
     if (!run.warning.empty()) j["warning"] = run.warning;
-    std::ofstream f(report_path);
-    f << j.dump(2) << '\n';
-    if (!f) {
-      std::fprintf(stderr, "wefm: cannot write %s\n", report_path.c_str());
-      return kExitIo;
+    if (const int code = write_file_atomically(report_path, j.dump(2) + '\n', error)) {
+      std::fprintf(stderr, "wefm: %s\n", error.c_str());
+      return code;
     }
   }
   if (!args.has("quiet")) {

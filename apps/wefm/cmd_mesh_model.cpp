@@ -90,6 +90,13 @@ struct FaceMeshRun {
   int64_t flips = 0;
 };
 
+Json defect_edges_json(const ConformityCounts& conf) {
+  Json out = Json::array();
+  for (const auto& d : conf.defect_edges)
+    out.push_back({{"midpoint", {d.midpoint[0], d.midpoint[1], d.midpoint[2]}}, {"uses", d.uses}, {"expected", d.expected}});
+  return out;
+}
+
 template <class T, class G>
 wefm_status fetch(std::vector<T>& out, G get) {
   int64_t n = 0;
@@ -371,6 +378,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
                          {"unexplained_open_edges", conf.unexplained_open_edges},
                          {"unexplained_non_manifold_edges", conf.unexplained_non_manifold_edges},
                          {"zero_area_triangles", conf.zero_area_triangles}, {"defect_faces", conf.defect_faces},
+                         {"defect_edges", defect_edges_json(conf)},
                          {"collapsed_triangles", collapsed}};
     rep["timings"] = {{"total", time_total}, {"read", model.time_read}, {"brepmesh", model.time_mesh},
                       {"import", model.time_extract}, {"edges", time_edges}, {"faces_wall", time_faces}, {"jobs", n_threads}};

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -26,6 +25,7 @@
 #include "face_job.hpp"
 #include "model_atlas.hpp"
 #include "names.hpp"
+#include "output_file.hpp"
 #include "output_paths.hpp"
 #endif
 
@@ -90,10 +90,10 @@ struct FaceRun {
 };
 
 const char* status_of(const FaceRun& r) {
-  if (!r.started) return r.exit_code == kExitCancelled ? "skipped" : "failed";
+  if (!r.started) return is_stop_code(r.exit_code) ? "skipped" : "failed";
   if (r.exit_code == kExitOk) return "ok";
   if (r.exit_code == kExitSolver && r.outcome.snap.has_result) return "not_converged";
-  return r.exit_code == kExitCancelled ? "cancelled" : "failed";
+  return r.exit_code == kExitCancelled ? "cancelled" : r.exit_code == kExitTimeLimit ? "time_limit" : "failed";
 }
 
 Json face_entry(const FaceRun& r, const std::filesystem::path& outdir) {
@@ -228,11 +228,20 @@ int run_model(const std::vector<std::string>& argv) {
   const bool quiet = args.has("quiet");
   const std::string model_path = args.positionals[0];
   const std::filesystem::path outdir = args.value("output");
+  // The per-face files (.obj, .json) cannot be the model (.step, .iges, .brep); index.json and the
+  // atlas are checked here, before the import.
+  std::vector<NamedPath> outputs = {{"-o", args.value("output")}};
+  if (!outdir.empty()) outputs = {{"the index", (outdir / "index.json").string()}};
+  if (args.has("atlas")) outputs.push_back({"--atlas", args.value("atlas")});
+  if (!check_output_paths({{"MODEL", model_path}}, outputs, error)) {
+    std::fprintf(stderr, "wefm model: %s\n", error.c_str());
+    return kExitUsage;
+  }
 
   wefm_cad::CadModel model;
-  if (!load_cad_model_via_plugin(model_path, tess, model, error)) {
+  if (const int code = load_cad_model_via_plugin(model_path, tess, model, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return kExitIo;
+    return code;
   }
   if (!make_dirs((outdir / "input").string(), error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
@@ -250,10 +259,11 @@ int run_model(const std::vector<std::string>& argv) {
     } else {
       r.input_obj = (outdir / "input" / (r.name + ".obj")).string();
       r.input_topo = (outdir / "input" / (r.name + ".topo.json")).string();
-      if (!wefm_cad::write_face_obj(r.input_obj, f, model_path, error) ||
-          !wefm_cad::write_face_topology(r.input_topo, f, model_path, error)) {
+      int code = write_file_atomically(r.input_obj, wefm_cad::face_obj_text(f, model_path), error);
+      if (code == kExitOk) code = write_file_atomically(r.input_topo, wefm_cad::face_topology_text(f, model_path), error);
+      if (code != kExitOk) {
         std::fprintf(stderr, "wefm: %s\n", error.c_str());
-        return kExitIo;
+        return code;
       }
       r.domain_obj = (outdir / (r.name + ".obj")).string();
       r.report = (outdir / (r.name + ".json")).string();
@@ -265,7 +275,6 @@ int run_model(const std::vector<std::string>& argv) {
                  model_path.c_str(), model.faces.size(), static_cast<long long>(model.edge_count), model.time_read,
                  model.time_mesh, model.linear_deflection, model.time_extract);
 
-  install_interrupt_handler();
   CancelWatcher watcher;
   std::atomic<size_t> next{0}, finished{0};
   std::mutex print_mutex;
@@ -299,7 +308,7 @@ int run_model(const std::vector<std::string>& argv) {
   for (auto& t : threads) t.join();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (FaceRun& r : runs)
-    if (!r.started && r.input_obj.size() && interrupted()) r.exit_code = kExitCancelled;
+    if (!r.started && r.input_obj.size() && interrupted()) r.exit_code = stop_exit_code();
 
   // Summary by surface type.
   std::map<std::string, TypeRow> by_type;
@@ -348,13 +357,9 @@ int run_model(const std::vector<std::string>& argv) {
   for (const FaceRun& r : runs) faces.push_back(face_entry(r, outdir));
   index["faces"] = faces;
   const std::string index_path = (outdir / "index.json").string();
-  {
-    std::ofstream out(index_path);
-    if (out) out << index.dump(1) << '\n';
-    if (!out) {
-      std::fprintf(stderr, "wefm: cannot write %s\n", index_path.c_str());
-      exit_code = std::max<int>(exit_code, kExitIo);
-    }
+  if (const int code = write_file_atomically(index_path, index.dump(1) + '\n', error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    exit_code = std::max<int>(exit_code, code);
   }
   if (args.has("atlas")) {
     std::vector<AtlasCell> cells;
@@ -379,7 +384,7 @@ int run_model(const std::vector<std::string>& argv) {
       exit_code = std::max<int>(exit_code, kExitIo);
     }
   }
-  if (interrupted()) exit_code = kExitCancelled;
+  if (interrupted()) exit_code = stop_exit_code();
   return exit_code;
 }
 

@@ -1,5 +1,7 @@
 #include "exit_codes.hpp"
 
+#include "stop.hpp"
+
 namespace wefm_cli {
 
 int exit_code_for(wefm_status status) {
@@ -11,7 +13,7 @@ int exit_code_for(wefm_status status) {
     case WEFM_ERROR_INVALID_TOPOLOGY:
     case WEFM_ERROR_INVALID_CONSTRAINT: return kExitInvalid;
     case WEFM_ERROR_INVALID_ARGUMENT: return kExitUsage;
-    case WEFM_ERROR_CANCELLED: return kExitCancelled;
+    case WEFM_ERROR_CANCELLED: return stop_exit_code();
     default: return kExitSolver;  // singular, not positive definite, not converged, memory, internal
   }
 }
@@ -23,7 +25,9 @@ const char* exit_codes_help() {
          "  3  unreadable input or unwritable output (also an unsupported file format)\n"
          "  4  invalid mesh or topology (seams, --topology file, --edge-mode-of that does not fit)\n"
          "  5  solver failure, including not converged (outputs are still written when a result exists)\n"
-         "  6  cancelled (Ctrl-C)\n";
+         "  6  cancelled (Ctrl-C or SIGTERM; a second one ends the process at once)\n"
+         "  7  time limit reached (--time-limit, or the CAD import's own limit)\n"
+         "Outputs are replaced whole or not at all: a failed or stopped run leaves the previous file.\n";
 }
 
 }  // namespace wefm_cli

@@ -54,12 +54,12 @@ class Runner {
 
   void run() {
     const auto t0 = Clock::now();
-    if (read_mesh() && setup_face()) {
+    if (read_mesh() && not_stopped() && setup_face() && not_stopped()) {
       out_.time.setup = since(t0) - out_.time.read;
       const auto ts = Clock::now();
       const bool solved = solve();
       out_.time.solve = since(ts);
-      if (solved) {
+      if (solved && not_stopped()) {
         const auto tw = Clock::now();
         write_outputs();
         out_.time.write = since(tw);
@@ -74,6 +74,8 @@ class Runner {
     out_.error = std::move(message);
     return false;
   }
+  // Polled between stages: reading and setting up a face of millions of triangles takes seconds.
+  bool not_stopped() { return !interrupted() || fail(stop_exit_code(), job_.input + ": " + stop_reason()); }
   std::string face_error() const { return wefm_face_last_error(face_.get()); }
 
   bool read_mesh() {
@@ -195,8 +197,7 @@ class Runner {
     }
     progress.finish();
     wefm_face_set_progress_callback(face_.get(), nullptr, nullptr);
-    if (st == WEFM_ERROR_CANCELLED || (st != WEFM_OK && interrupted()))
-      return fail(kExitCancelled, job_.input + ": cancelled");
+    if (st == WEFM_ERROR_CANCELLED || interrupted()) return fail(stop_exit_code(), job_.input + ": " + stop_reason());
     if (st != WEFM_OK && st != WEFM_ERROR_NOT_CONVERGED) {
       const int code = exit_code_for(st) == kExitInvalid ? kExitInvalid : kExitSolver;
       return fail(code, job_.input + ": solve failed: " + annotate_edges(face_error(), topo_.ids) + " [" +

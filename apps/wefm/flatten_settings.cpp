@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "names.hpp"
+#include "stop.hpp"
 
 namespace wefm_cli {
 
@@ -67,6 +68,9 @@ std::vector<OptionSpec> solver_option_specs() {
        num(d.score_threshold), false},
       {"outer-loop", 0, "N", "outer loop: loop index of --topology, else boundary-cycle index; -1 automatic",
        "from --topology, else automatic", false},
+      {"time-limit", 0, "SECONDS",
+       "end the whole command within SECONDS (reading, CAD import, solves, outputs): exit 7, previous outputs kept",
+       "none; a CAD import alone is given " + num(kDefaultImportSeconds) + " s", false},
   };
 }
 
@@ -131,6 +135,16 @@ bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std
   if (args.has("outer-loop")) {
     if (!get_int(args, "outer-loop", settings.outer_loop, error)) return false;
     settings.has_outer_loop = true;
+  }
+  if (args.has("time-limit")) {
+    double seconds = 0;
+    if (!get_double(args, "time-limit", seconds, error)) return false;
+    if (!(seconds > 0) || seconds > 1e9) {
+      error = "--time-limit: expected seconds > 0, got '" + args.value("time-limit") + "'";
+      return false;
+    }
+    // The commands parse their options first thing, so the deadline counts from the start.
+    set_time_limit(seconds);
   }
   return true;
 }

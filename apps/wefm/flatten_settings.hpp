@@ -28,7 +28,7 @@ struct FlattenSettings {
 std::vector<OptionSpec> solver_option_specs();
 
 // Fills settings.options and edge_modes/outer_loop from parsed solver options. False + error on a
-// malformed value (exit code 2).
+// malformed value (exit code 2). --time-limit starts the deadline (stop.hpp) here.
 bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std::string& error);
 
 // The commands that solve one face at a time (flatten, mesh) give it every hardware thread unless

@@ -7,6 +7,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "huge_page_malloc.hpp"
+#include "stop.hpp"
 #include "wefm/wefm.h"
 
 namespace {
@@ -44,7 +45,10 @@ int run(int argc, char** argv) {
     return kExitOk;
   }
   for (const auto& c : commands()) {
-    if (first == c.name) return c.run(std::vector<std::string>(argv + 2, argv + argc));
+    if (first != c.name) continue;
+    const int code = c.run(std::vector<std::string>(argv + 2, argv + argc));
+    // A stage that failed because it was stopped reports the stop, whatever it made of it.
+    return interrupted() && code != kExitOk && code != kExitUsage ? stop_exit_code() : code;
   }
   std::fprintf(stderr, "wefm: unknown command '%s' (try wefm --help)\n", first.c_str());
   return kExitUsage;
@@ -53,7 +57,12 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // One handler for every command and stage (stop.hpp); the commands poll it. The signals are held
+  // over the re-exec, which resets handlers but keeps the mask and pending signals, so a Ctrl-C at
+  // that moment waits for the handler instead of killing the process.
+  wefm_cli::hold_stop_signals();
   wefm_cli::reexec_with_huge_page_malloc(argc, argv);
+  wefm_cli::install_stop_handlers();
   // No exception may escape: an unexpected one (std::bad_alloc while writing outputs) becomes a
   // message and the solver-failure code rather than std::terminate.
   try {

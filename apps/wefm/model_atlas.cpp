@@ -88,8 +88,8 @@ int write_model_atlas(const std::string& path, const std::string& title, const s
   const double header = 36;
   TextOut out;
   if (!out.open(path)) {
-    error = "cannot write " + path;
-    return kExitIo;
+    error = out.error();
+    return out.failure_code();
   }
   out.put("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"");
   out.fixed(cols * kCell, 0);
@@ -117,8 +117,8 @@ int write_model_atlas(const std::string& path, const std::string& title, const s
   }
   out.put("</svg>\n");
   if (!out.close()) {
-    error = "cannot write " + path;
-    return kExitIo;
+    error = out.error();
+    return out.failure_code();
   }
   return kExitOk;
 }

@@ -41,6 +41,8 @@ double lo_lambda(const double* a, const double* b, const double* c) {
 
 // Lo's lambda below this is a triangle with no area to speak of: a solver divides by it.
 constexpr double kZeroAreaLambda = 1e-6;
+// How many unexplained edges conformity() lists by position.
+constexpr size_t kListedDefects = 20;
 
 }  // namespace
 
@@ -69,6 +71,14 @@ int32_t ModelMesh::weld(const double* p, int face_tag) {
                          static_cast<int64_t>(std::floor(p[2] / tol_))),
                 id);
   return id;
+}
+
+void ModelMesh::note_defect(ConformityCounts& out, uint64_t key, int uses, int expected) const {
+  if (out.defect_edges.size() >= kListedDefects) return;
+  const size_t a = key >> 32, b = key & 0xffffffffULL;
+  ConformityCounts::DefectEdge d{{}, uses, expected};
+  for (size_t c = 0; c < 3; ++c) d.midpoint[c] = 0.5 * (xyz_[3 * a + c] + xyz_[3 * b + c]);
+  out.defect_edges.push_back(d);
 }
 
 void ModelMesh::expect_model_edge(const std::vector<double>& nodes, int face_uses) {
@@ -145,13 +155,19 @@ ConformityCounts ModelMesh::conformity() const {
     const auto it = expected_uses_.find(key);
     const int want = it == expected_uses_.end() ? 2 : it->second;
     out.brep_edge_segments += it != expected_uses_.end();
-    if (n != want) defect_edges.emplace(key, 1);
+    if (n != want) {
+      defect_edges.emplace(key, 1);
+      note_defect(out, key, n, want);
+    }
     out.unexplained_open_edges += n < want;
     out.unexplained_non_manifold_edges += n > want;
   }
   // A model-edge segment no triangle uses at all is a gap as well (both faces left it out).
   for (const auto& [key, want] : expected_uses_)
-    if (!uses.count(key)) out.unexplained_open_edges += 1;
+    if (!uses.count(key)) {
+      out.unexplained_open_edges += 1;
+      note_defect(out, key, 0, want);
+    }
   std::vector<int> faces;
   for (size_t t = 0; t + 2 < tris_.size(); t += 3) {
     bool bad = lo_lambda(&xyz_[3 * static_cast<size_t>(tris_[t])], &xyz_[3 * static_cast<size_t>(tris_[t + 1])],

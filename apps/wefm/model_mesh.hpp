@@ -24,6 +24,11 @@ struct ConformityCounts {
   int64_t unexplained_non_manifold_edges = 0;  // used more times than the B-rep says
   int64_t zero_area_triangles = 0;
   std::vector<int> defect_faces;   // faces holding a triangle on an unexplained edge, or a zero-area one
+  struct DefectEdge {
+    double midpoint[3];
+    int uses, expected;
+  };
+  std::vector<DefectEdge> defect_edges;  // the first few unexplained edges, to find them in the mesh
   bool defects() const { return unexplained_open_edges || unexplained_non_manifold_edges || zero_area_triangles; }
 };
 
@@ -63,6 +68,7 @@ class ModelMesh {
  private:
   int32_t weld(const double* p, int face_tag);
   int32_t find(const double* p) const;  // the welded node at p, or -1
+  void note_defect(ConformityCounts& out, uint64_t key, int uses, int expected) const;
 
   double tol_;
   std::vector<double> xyz_;

@@ -1,8 +1,5 @@
 #include "obj_output.hpp"
 
-#include <cerrno>
-#include <cstring>
-
 #include "exit_codes.hpp"
 #include "text_out.hpp"
 #include "wefm/wefm.h"
@@ -12,8 +9,8 @@ namespace wefm_cli {
 int write_uv_obj(const std::string& path, const std::string& input, const FaceSnapshot& snap, std::string& error) {
   TextOut out;
   if (!out.open(path)) {
-    error = path + ": cannot create: " + std::strerror(errno);
-    return kExitIo;
+    error = out.error();
+    return out.failure_code();
   }
   out.put("# wefm ");
   out.put(wefm_version());
@@ -52,8 +49,8 @@ int write_uv_obj(const std::string& path, const std::string& input, const FaceSn
     out.put('\n');
   }
   if (!out.close()) {
-    error = path + ": write failed: " + std::strerror(errno);
-    return kExitIo;
+    error = out.error();
+    return out.failure_code();
   }
   return kExitOk;
 }

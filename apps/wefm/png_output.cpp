@@ -11,6 +11,7 @@
 
 #include "domain_picture.hpp"
 #include "exit_codes.hpp"
+#include "output_file.hpp"
 
 #ifdef WEFM_CLI_HAVE_ZLIB
 #include <zlib.h>
@@ -160,14 +161,7 @@ int write_domain_png(const std::string& path, const FaceSnapshot& snap, const Do
   chunk(png, "tEXt", std::string("Comment") + '\0' + comment);
   chunk(png, "IDAT", z);
   chunk(png, "IEND", "");
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  bool ok = f != nullptr && std::fwrite(png.data(), 1, png.size(), f) == png.size();
-  if (f && std::fclose(f) != 0) ok = false;
-  if (!ok) {
-    error = path + ": cannot write: " + std::strerror(errno);
-    return kExitIo;
-  }
-  return kExitOk;
+  return write_file_atomically(path, png, error);
 }
 
 #else

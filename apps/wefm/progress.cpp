@@ -1,27 +1,10 @@
 #include "progress.hpp"
 
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <unistd.h>
 
 namespace wefm_cli {
-
-namespace {
-
-std::atomic<bool> g_interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT handler needs a lock-free flag");
-
-extern "C" void on_sigint(int) {
-  g_interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);
-}
-
-}  // namespace
-
-void install_interrupt_handler() { std::signal(SIGINT, on_sigint); }
-
-bool interrupted() { return g_interrupted.load(); }
 
 CancelWatcher::CancelWatcher() : thread_([this] { loop(); }) {}
 

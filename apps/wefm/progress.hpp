@@ -1,9 +1,10 @@
 #pragma once
-// Progress display and Ctrl-C handling for solves.
+// Progress display and stop requests for solves.
 //
-// Cancelling uses both routes the library offers: the progress callback returns non-zero once SIGINT
-// was seen, and a watcher thread calls wefm_face_cancel() on every running face, so a stage that
-// reports progress rarely (a long factorisation) still stops at the library's next check.
+// Stopping (stop.hpp: Ctrl-C, SIGTERM, --time-limit) uses both routes the library offers: the
+// progress callback returns non-zero once a stop was requested, and a watcher thread calls
+// wefm_face_cancel() on every running face, so a stage that reports progress rarely (a long
+// factorisation, the domain meshing) still stops at the library's next check.
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
@@ -11,13 +12,10 @@
 #include <string>
 #include <thread>
 
+#include "stop.hpp"
 #include "wefm/wefm.h"
 
 namespace wefm_cli {
-
-// SIGINT sets a flag; a second SIGINT kills the process the default way (for a stuck solve).
-void install_interrupt_handler();
-bool interrupted();
 
 class CancelWatcher {
  public:

@@ -3,10 +3,10 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "exit_codes.hpp"
+#include "output_file.hpp"
 #include "huge_page_malloc.hpp"
 #include "names.hpp"
 
@@ -120,13 +120,7 @@ int write_report_json(const std::string& path, const ReportContext& ctx, const F
   for (const auto& [what, p] : ctx.outputs) outputs[key_of(what)] = p;
   j["outputs"] = outputs;
 
-  std::ofstream out(path, std::ios::binary);
-  if (out) out << j.dump(2) << '\n';
-  if (!out) {
-    error = path + ": cannot write report: " + std::strerror(errno);
-    return kExitIo;
-  }
-  return kExitOk;
+  return write_file_atomically(path, j.dump(2) + '\n', error);
 }
 
 }  // namespace wefm_cli

@@ -167,8 +167,8 @@ int write_domain_svg(const std::string& path, const FaceSnapshot& snap, const Do
   const double height = std::max(2 * kMargin + dv * view.k, 520.0);
   TextOut out;
   if (!out.open(path)) {
-    error = path + ": cannot create: " + std::strerror(errno);
-    return kExitIo;
+    error = out.error();
+    return out.failure_code();
   }
   char buf[256];
   std::snprintf(buf, sizeof buf,
@@ -191,8 +191,8 @@ int write_domain_svg(const std::string& path, const FaceSnapshot& snap, const Do
   legend(out, a, 2 * kMargin + du * view.k, height);
   out.put("</svg>\n");
   if (!out.close()) {
-    error = path + ": write failed: " + std::strerror(errno);
-    return kExitIo;
+    error = out.error();
+    return out.failure_code();
   }
   return kExitOk;
 }

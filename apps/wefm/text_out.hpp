@@ -1,12 +1,16 @@
 #pragma once
 // Buffered file writer for large outputs (OBJ/SVG of a million triangles): one big buffer and
-// std::to_chars, because iostream formatting per number dominates the run time at that size.
+// std::to_chars, because iostream formatting per number dominates the run time at that size. The
+// bytes go through OutputFile (output_file.hpp): the target is replaced whole on close, or not at all.
 #include <charconv>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "exit_codes.hpp"
+#include "output_file.hpp"
+#include "stop.hpp"
 
 namespace wefm_cli {
 
@@ -15,21 +19,18 @@ class TextOut {
   TextOut() : buf_(1 << 20) {}
   TextOut(const TextOut&) = delete;
   TextOut& operator=(const TextOut&) = delete;
-  ~TextOut() { close(); }
 
-  // False with errno set when the file cannot be created.
-  bool open(const std::string& path) {
-    file_ = std::fopen(path.c_str(), "wb");
-    return file_ != nullptr;
-  }
-  // Flushes and closes; false if any write failed (disk full shows up here, not as a short file).
+  // False with error() when the file cannot be created.
+  bool open(const std::string& path) { return file_.open(path); }
+  // Flushes and puts the file in place; false with error() if anything failed (a full disk shows up
+  // here at the latest) or a stop was requested, and then the previous file is left as it was.
   bool close() {
-    if (!file_) return !failed_;
     flush();
-    if (std::fclose(file_) != 0) failed_ = true;
-    file_ = nullptr;
-    return !failed_;
+    return file_.commit();
   }
+  const std::string& error() const { return file_.error(); }
+  // Exit code for a failed close: an I/O error, or the stop's own code (stop.hpp).
+  int failure_code() const { return file_.stopped() ? stop_exit_code() : kExitIo; }
 
   void put(char c) {
     if (n_ == buf_.size()) flush();
@@ -68,14 +69,11 @@ class TextOut {
     if (n_) write_raw(buf_.data(), n_);
     n_ = 0;
   }
-  void write_raw(const char* p, size_t k) {
-    if (!file_ || std::fwrite(p, 1, k, file_) != k) failed_ = true;
-  }
+  void write_raw(const char* p, size_t k) { file_.write(p, k); }
 
-  std::FILE* file_ = nullptr;
+  OutputFile file_;
   std::vector<char> buf_;
   size_t n_ = 0;
-  bool failed_ = false;
 };
 
 }  // namespace wefm_cli

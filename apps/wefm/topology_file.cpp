@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "exit_codes.hpp"
+#include "output_file.hpp"
 #include "names.hpp"
 
 namespace wefm_cli {
@@ -147,13 +148,7 @@ int write_topology_file(const std::string& path, const TopologyFile& topo, std::
     loops.push_back(std::move(loop));
   }
   doc["outer_loop"] = topo.outer_loop;
-  std::ofstream out(path, std::ios::binary);
-  if (out) out << doc.dump(1) << '\n';
-  if (!out) {
-    error = path + ": cannot write topology file: " + std::strerror(errno);
-    return kExitIo;
-  }
-  return kExitOk;
+  return write_file_atomically(path, doc.dump(1) + '\n', error);
 }
 
 }  // namespace wefm_cli

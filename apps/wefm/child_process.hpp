@@ -1,0 +1,21 @@
+#pragma once
+// Work that cannot be interrupted (Open CASCADE's import) run where it can be abandoned: a forked
+// child process computes bytes and writes them to a pipe; the parent reads them while polling the
+// stop requests (stop.hpp) and its own time limit, and kills the child when either comes first.
+// The child also dies with the parent (PR_SET_DEATHSIG) and is killed by the second-signal handler.
+// Call it while the process has no other threads of its own: the child runs `work` after fork().
+#include <functional>
+#include <string>
+
+namespace wefm_cli {
+
+struct ChildOutcome {
+  enum Kind { kDone, kStopped, kTimedOut, kFailed } kind = kFailed;
+  std::string bytes;    // kDone: everything the child wrote
+  std::string problem;  // kFailed: what happened to the child ("killed by signal 11 (SIGSEGV)", ...)
+};
+
+// `seconds` > 0 bounds the child's run (besides the stop requests).
+ChildOutcome run_in_child(const std::function<std::string()>& work, double seconds);
+
+}  // namespace wefm_cli
