@@ -21,7 +21,7 @@ class ConstraintsMixin:
         """Pin a use at (u, v); u may be a complex or a pair instead. Returns the constraint id."""
         u, v = _point(u, v)
         cid = c_int32(-1)
-        self._call("face_add_pin", int(use), u, v, ctypes.byref(cid))
+        self._call("face_add_pin", use, u, v, ctypes.byref(cid))
         return cid.value
 
     def add_constraint(self, uses, coefficients, rhs=0j):

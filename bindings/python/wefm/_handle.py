@@ -44,6 +44,16 @@ class Handle:
         except Exception:  # never raise from a finaliser (e.g. during interpreter shutdown)
             pass
 
+    # A copy of the object would hold the same raw pointer: two owners release it (heap corruption),
+    # and in another process (multiprocessing, a pickle file) it points at nothing (a crash). The
+    # data it was made from is what to send or copy.
+    def _refuse_copy(self, *_args):
+        raise TypeError("a wefm.%s cannot be pickled or copied: it owns a libwefm handle that is valid "
+                        "only in this process and only once; pass the arrays and options it was made "
+                        "from and build a new one" % type(self).__name__)
+
+    __reduce__ = __reduce_ex__ = __getstate__ = __copy__ = __deepcopy__ = _refuse_copy
+
     def _call(self, name, *args):
         """Call lib.<name>(handle, *args) and raise on a non-OK status."""
         from ._api import lib

@@ -22,6 +22,9 @@ class LibraryNotFoundError(ImportError):
         lines += ["  %s: %s" % (path, why) for path, why in tried]
         super().__init__("\n".join(lines))
 
+    def __reduce__(self):
+        return (type(self), (self.tried,))
+
 
 def _package_dir():
     return os.path.dirname(os.path.abspath(__file__))

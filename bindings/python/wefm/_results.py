@@ -42,7 +42,7 @@ class ResultsMixin:
 
     def edge_scores(self, edge):
         """Score per candidate mode of a repeated edge, indexed by wefm_edge_mode (NaN = not tried)."""
-        return query(lib.face_get_edge_scores, (self.handle, int(edge)), np.float64, 1, self.handle,
+        return query(lib.face_get_edge_scores, (self.handle, edge), np.float64, 1, self.handle,
                      "wefm_face_get_edge_scores")
 
     @property
@@ -84,7 +84,7 @@ class ResultsMixin:
     def set_edge_nodes(self, edge, xyz):
         """Use these 3D nodes (n, 3; along the edge, ends included) instead of the global size."""
         nodes = rows(xyz, 3, np.float64, "xyz")
-        self._call("face_set_edge_nodes", int(edge), nodes.shape[0], ptr(nodes, c_double))
+        self._call("face_set_edge_nodes", edge, nodes.shape[0], ptr(nodes, c_double))
 
     def clear_edge_nodes(self):
         self._call("face_clear_edge_nodes")

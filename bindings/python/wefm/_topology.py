@@ -36,7 +36,7 @@ class TopologyMixin:
 
     def set_outer_loop(self, loop):
         """Designate the outer loop (a loop id, or a boundary-cycle index); -1 = automatic."""
-        self._call("face_set_outer_loop", int(loop))
+        self._call("face_set_outer_loop", loop)
 
     def add_seams(self, vertex_pairs):
         """Cut along facet edges given as an (n, 2) array of vertex indices."""
@@ -45,7 +45,7 @@ class TopologyMixin:
 
     def set_edge_mode(self, edge, mode):
         """Force the mode of a repeated edge: wefm.EDGE_* or "free"/"periodic"/"scar"/"rotational"."""
-        self._call("face_set_edge_mode", int(edge), edge_mode_value(mode))
+        self._call("face_set_edge_mode", edge, edge_mode_value(mode))
 
     def build(self):
         """Build and validate the topology and vertex uses now (solve does it too)."""
@@ -61,7 +61,7 @@ class TopologyMixin:
 
     def edge(self, edge):
         """Vertex chain of one edge."""
-        return query(lib.face_get_edge, (self.handle, int(edge)), np.int32, 1, self.handle,
+        return query(lib.face_get_edge, (self.handle, edge), np.int32, 1, self.handle,
                      "wefm_face_get_edge")
 
     def edges(self):
@@ -70,7 +70,7 @@ class TopologyMixin:
 
     def edge_is_repeated(self, edge):
         flag = c_int32(0)
-        self._call("face_edge_is_repeated", int(edge), ctypes.byref(flag))
+        self._call("face_edge_is_repeated", edge, ctypes.byref(flag))
         return bool(flag.value)
 
     def loop_count(self):
@@ -78,12 +78,12 @@ class TopologyMixin:
 
     def loop(self, loop):
         """Edge uses of a loop as an (n, 2) array of (edge id, reversed flag)."""
-        return query(lib.face_get_loop, (self.handle, int(loop)), np.int32, 2, self.handle,
+        return query(lib.face_get_loop, (self.handle, loop), np.int32, 2, self.handle,
                      "wefm_face_get_loop")
 
     def loop_uses(self, loop):
         """Vertex uses along a loop in order (face on the left)."""
-        return query(lib.face_get_loop_uses, (self.handle, int(loop)), np.int32, 1, self.handle,
+        return query(lib.face_get_loop_uses, (self.handle, loop), np.int32, 1, self.handle,
                      "wefm_face_get_loop_uses")
 
     def outer_loop(self):
@@ -110,5 +110,5 @@ class TopologyMixin:
 
     def vertex_uses(self, vertex):
         """The uses of one vertex (several when it lies on a repeated edge)."""
-        return query(lib.face_get_vertex_uses, (self.handle, int(vertex)), np.int32, 1, self.handle,
+        return query(lib.face_get_vertex_uses, (self.handle, vertex), np.int32, 1, self.handle,
                      "wefm_face_get_vertex_uses")

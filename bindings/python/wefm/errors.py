@@ -19,6 +19,11 @@ class WefmError(Exception):
         where = "%s: " % function if function else ""
         super().__init__("%s%s: %s" % (where, self.status_name, message or "(no message)"))
 
+    def __reduce__(self):
+        # Exception's default would call __init__ with the formatted text only (a worker's error
+        # could then not be unpickled by multiprocessing); attributes such as .result follow.
+        return (type(self), (self.status, self.message, self.function), self.__dict__)
+
 
 class NullArgumentError(WefmError):
     """WEFM_ERROR_NULL_ARGUMENT: a bug in the bindings if it ever surfaces."""

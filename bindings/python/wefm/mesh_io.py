@@ -6,7 +6,7 @@ from ctypes import c_double, c_int32
 import numpy as np
 
 from ._api import lib
-from ._arrays import indices, ptr, query, rows
+from ._arrays import ptr, query, rows
 from ._handle import Handle, new_handle
 from ._records import MeshInfo, new_mesh_info
 
@@ -24,7 +24,7 @@ class Mesh(Handle):
     @classmethod
     def from_arrays(cls, vertices, triangles):
         xyz = rows(vertices, 3, np.float64, "vertices")
-        tri = indices(triangles, 3, "triangles").astype(np.int32, copy=False)
+        tri = rows(triangles, 3, np.int32, "triangles")
         return cls(new_handle(lib.mesh_create, xyz.shape[0], ptr(xyz, c_double), tri.shape[0],
                               ptr(tri, c_int32)))
 

@@ -2,12 +2,14 @@
 
 Defaults always come from the library's *_init functions, never from this file.
 Enum-valued fields also accept their names ("rollout", "eigen", "periodic", "transfinite") and
-flag fields accept bool.
+flag fields accept bool. Integer fields refuse what their C type cannot hold (OverflowError) and
+non-integers (TypeError) instead of letting ctypes wrap or truncate them.
 """
 import ctypes
 
 from . import _structs as S
 from ._api import lib
+from ._checked import C_INTEGERS, c_integer
 from ._records import initialised
 
 _ENUMS = {
@@ -26,24 +28,31 @@ def edge_mode_value(mode):
             return S.EDGE_MODE_NAMES.index(mode.lower())
         except ValueError:
             raise ValueError("unknown edge mode %r; one of %s" % (mode, ", ".join(S.EDGE_MODE_NAMES)))
-    return int(mode)
+    return mode  # range-checked with the call (_checked)
+
+
+def _field_value(ctype, value, what):
+    """value as `ctype` stores it: integers range-checked (_checked), arrays element by element."""
+    if issubclass(ctype, ctypes.Array):
+        if len(value) != ctype._length_:
+            raise ValueError("%s needs %d values" % (what, ctype._length_))
+        return ctype(*(_field_value(ctype._type_, v, "%s[%d]" % (what, i)) for i, v in enumerate(value)))
+    if ctype in C_INTEGERS:
+        return c_integer(value, ctype, what)
+    return value
 
 
 def _assign(struct, name, value):
-    names = [f for f, _ in struct._fields_ if f != "struct_size"]
-    if name not in names:
-        raise TypeError("unknown option %r; valid: %s" % (name, ", ".join(names)))
+    fields = dict(struct._fields_)
+    fields.pop("struct_size")
+    if name not in fields:
+        raise TypeError("unknown option %r; valid: %s" % (name, ", ".join(fields)))
     if name in _ENUMS and isinstance(value, str):
         try:
             value = _ENUMS[name][value.lower()]
         except KeyError:
             raise ValueError("%s=%r: one of %s" % (name, value, ", ".join(_ENUMS[name])))
-    current = getattr(struct, name)
-    if isinstance(current, ctypes.Array):
-        if len(value) != len(current):
-            raise ValueError("%s needs %d values" % (name, len(current)))
-        value = type(current)(*value)
-    setattr(struct, name, value)
+    setattr(struct, name, _field_value(fields[name], value, "%s.%s" % (type(struct).__name__, name)))
 
 
 class _StructOptions:
@@ -86,6 +95,21 @@ class _StructOptions:
 
     def __eq__(self, other):
         return type(other) is type(self) and other.as_dict() == self.as_dict()
+
+    # By value (field names, not the struct's bytes), so a copy never shares the struct with its
+    # original and a pickle outlives a change of the struct layout.
+    def __reduce__(self):
+        return (_rebuild, (type(self), self.as_dict()))
+
+    def __copy__(self):
+        return type(self)._wrap(self._struct)
+
+    def __deepcopy__(self, _memo):
+        return self.__copy__()
+
+
+def _rebuild(cls, fields):
+    return cls(**fields)
 
 
 class Options(_StructOptions):
