@@ -25,7 +25,8 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
   double area = 0;
   for (size_t t = 0; t < mesh.triangles.size(); ++t) area += triangle_area(mesh, static_cast<Index>(t));
   const double estimate = 2.5 * area / (0.433 * o.size * o.size);
-  if (estimate > 2e8) fail(Errc::invalid_argument, "mesh size " + std::to_string(o.size) + " would give about " + std::to_string(static_cast<std::int64_t>(estimate)) + " elements");
+  // As a number, not an integer: a tiny size makes the estimate infinite.
+  if (estimate > 2e8) fail(Errc::invalid_argument, "mesh size " + message_number(o.size) + " would give about " + message_number(estimate) + " elements");
 
   // A self-intersecting domain boundary maps some UV points to two places: no mesh of it is valid.
   if (const std::int64_t crossings = count_boundary_intersections(topo, uv); crossings > 0)
