@@ -41,7 +41,7 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     auto t0 = std::chrono::steady_clock::now();
     const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);
     out.report.time_boundary = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    free_mesh(loops, map, o, out, cancel);
+    free_mesh(loops, map, o, estimate / 2.5, out, cancel);
     t0 = std::chrono::steady_clock::now();
     out.normal.resize(out.uv.size());
     for (size_t k = 0; k < out.uv.size(); ++k) {
@@ -53,6 +53,11 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 3) > o.max_elements)
       fail(Errc::invalid_argument, "the free mesh needs more than max_elements = " + std::to_string(o.max_elements) + " triangles at size " + std::to_string(o.size));
   }
+  // A node the mapping could not place (NaN from the mesher) would reach the caller as garbage.
+  for (size_t k = 0; k < out.uv.size(); ++k)
+    if (!out.uv[k].allFinite() || !out.xyz[k].allFinite())
+      fail(Errc::internal, "domain mesh node " + std::to_string(k) + " has a non-finite position (UV " + message_number(out.uv[k].x()) + ", " +
+                               message_number(out.uv[k].y()) + ")");
   measure_quality(out);
   return out;
 }

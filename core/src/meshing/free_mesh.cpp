@@ -65,8 +65,8 @@ void boundary_nodes(const std::vector<LoopNodes>& loops, std::vector<P2>& pts, s
 
 }  // namespace
 
-void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, DomainMesh& out,
-               const std::atomic<bool>* cancel) {
+void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, double expected_elements,
+               DomainMesh& out, const std::atomic<bool>* cancel) {
   auto check_cancel = [&] {
     if (cancel && cancel->load()) fail(Errc::cancelled, "meshing cancelled");
   };
@@ -84,8 +84,11 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
     // Throwing here leaves the triangulation consistent; it is discarded with the exception.
     if ((++inserted & 255) == 0) check_cancel();
   };
-  // A triangulation has about twice as many triangles as nodes: stop refining near the cap.
-  const std::int64_t max_nodes = o.max_elements > 0 ? o.max_elements / 2 + 1 : 0;
+  // A triangulation has about twice as many triangles as nodes: stop refining near the cap. Without
+  // one, refinement stops far past what the face's area and its boundary can need: a cascade of
+  // insertions around a tiny angle must not run on until memory is gone.
+  const std::int64_t budget = static_cast<std::int64_t>(std::min(4e9, 10 * expected_elements / 2 + 20.0 * static_cast<double>(pts.size()) + 1000));
+  const std::int64_t max_nodes = o.max_elements > 0 ? std::min(o.max_elements / 2 + 1, budget) : budget;
   FrontalSettings fs;
   fs.max_nodes = max_nodes;
   frontal_refine(tr, out.xyz, node_size, map, field, fs, tick);

@@ -89,6 +89,10 @@ Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<st
     }
   }
   mark_inside();
+  // Closed loops keep the super-triangle outside; anything else would hand out its nodes as mesh nodes.
+  for (const T& tt : tris_)
+    if (tt.live && tt.inside && (tt.v[0] < kSuper || tt.v[1] < kSuper || tt.v[2] < kSuper))
+      fail(Errc::invalid_state, "the boundary segments do not enclose the domain: the domain boundary is not closed");
 }
 
 Index Triangulation::locate(const P2& p, Index t, bool stop_at_segments, std::array<Index, 2>* crossed) const {
@@ -287,6 +291,11 @@ void Triangulation::recover(Index a, Index b) {
     q.emplace_back(v1, v2);
     int i;
     const Index cur = edge_triangle(v1, v2, &i);
+    // Flipping a segment away would open the boundary, and the outside would leak into the domain.
+    if (tris_[cur].c[i])
+      fail(Errc::invalid_state, "boundary segments (" + std::to_string(a - kSuper) + ", " + std::to_string(b - kSuper) + ") and (" +
+                                    std::to_string(v1 - kSuper) + ", " + std::to_string(v2 - kSuper) +
+                                    ") cross: the discretised domain boundary intersects itself");
     const Index s = tris_[cur].n[i];
     int j = 0;
     while (tris_[s].n[j] != cur) ++j;

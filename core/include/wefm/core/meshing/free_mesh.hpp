@@ -9,7 +9,9 @@
 
 namespace wefm::meshing {
 
-void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& options, DomainMesh& out,
-               const std::atomic<bool>* cancel = nullptr);
+// `expected_elements`: about how many triangles the face's area asks for at options.size; refinement
+// stops at ten times that (plus room for the boundary's grading) whatever else asks for more.
+void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& options, double expected_elements,
+               DomainMesh& out, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace wefm::meshing
