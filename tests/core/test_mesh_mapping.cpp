@@ -1,5 +1,7 @@
 // UV <-> 3D mapping of a solved face (METHOD §9.3).
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "mesh_faces.hpp"
@@ -15,9 +17,9 @@ TEST_CASE("UV -> 3D -> UV round trip on a curved face, vertices exact") {
   for (Index u = 0; u < tp.use_count; ++u) {
     const double q[2] = {f.uv()[u].real(), f.uv()[u].imag()};
     double x[3];
-    bool in;
+    meshing::PointStatus in;
     map.uv_to_3d(1, q, x, &in, nullptr);
-    CHECK(in);
+    CHECK(in == meshing::PointStatus::inside);
     CHECK((Vec3(x[0], x[1], x[2]) - f.mesh().vertices[static_cast<size_t>(tp.use_vertex[static_cast<size_t>(u)])]).norm() < 1e-12);
   }
   // Random points inside random triangles.
@@ -32,12 +34,12 @@ TEST_CASE("UV -> 3D -> UV round trip on a curved face, vertices exact") {
     const Complex z = (1 - a - b) * f.uv()[tp.corner_use[3 * t]] + a * f.uv()[tp.corner_use[3 * t + 1]] + b * f.uv()[tp.corner_use[3 * t + 2]];
     uv[2 * i] = z.real(), uv[2 * i + 1] = z.imag();
   }
-  std::vector<char> in1(n), in2(n);
-  map.uv_to_3d(n, uv.data(), xyz.data(), reinterpret_cast<bool*>(in1.data()), nullptr);
-  map.xyz_to_uv(n, xyz.data(), back.data(), reinterpret_cast<bool*>(in2.data()), nullptr);
+  std::vector<meshing::PointStatus> in1(n), in2(n);
+  map.uv_to_3d(n, uv.data(), xyz.data(), in1.data(), nullptr);
+  map.xyz_to_uv(n, xyz.data(), back.data(), in2.data(), nullptr);
   for (int i = 0; i < n; ++i) {
-    CHECK(in1[static_cast<size_t>(i)]);
-    CHECK(in2[static_cast<size_t>(i)]);
+    CHECK(in1[static_cast<size_t>(i)] == meshing::PointStatus::inside);
+    CHECK(in2[static_cast<size_t>(i)] == meshing::PointStatus::inside);
     CHECK(std::hypot(back[2 * i] - uv[2 * i], back[2 * i + 1] - uv[2 * i + 1]) < 1e-9);
   }
 }
@@ -52,12 +54,12 @@ TEST_CASE("points outside the domain get a status and the nearest domain point")
   }
   const double q[4] = {hi[0] + 10, hi[1] + 10, 0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
   double x[6];
-  bool in[2];
+  meshing::PointStatus in[2];
   Index t[2];
   map.uv_to_3d(2, q, x, in, t);
-  CHECK_FALSE(in[0]);
+  CHECK(in[0] == meshing::PointStatus::outside);
   CHECK(t[0] == -1);
-  CHECK(in[1]);
+  CHECK(in[1] == meshing::PointStatus::inside);
   CHECK(t[1] >= 0);
   // The far point maps to the domain's nearest corner: a corner of the unit square.
   CHECK(std::min({Vec3(x[0], x[1], x[2]).norm(), (Vec3(x[0], x[1], x[2]) - Vec3(1, 1, 0)).norm(), (Vec3(x[0], x[1], x[2]) - Vec3(1, 0, 0)).norm(),
@@ -65,7 +67,46 @@ TEST_CASE("points outside the domain get a status and the nearest domain point")
   const double p3[3] = {0.5, 0.5, 1.0};  // off the surface
   double w[2];
   map.xyz_to_uv(1, p3, w, in, t);
-  CHECK_FALSE(in[0]);
+  CHECK(in[0] == meshing::PointStatus::outside);
+}
+
+TEST_CASE("non-finite points are unmapped; far and huge points map to the nearest domain point") {
+  const auto f = test::solved(test::unit_square(6));
+  const meshing::FaceMapper map(f.mesh(), f.topo(), f.uv());
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  // UV -> 3D: NaN, +inf, -inf, |u| past the squared-distance overflow, the largest doubles, and
+  // one far but ordinary point.
+  const double q[] = {nan, 0.0, 0.0, inf, -inf, 0.5, 1e154, 0.3, 1.7e308, -1.7e308, 1e3, 0.3};
+  const int n = 6;
+  double x[3 * n];
+  meshing::PointStatus s[n];
+  Index t[n];
+  CHECK(map.uv_to_3d(n, q, x, s, t) == 3);
+  for (int i = 0; i < 3; ++i) {
+    CHECK(s[i] == meshing::PointStatus::unmapped);
+    CHECK(t[i] == -1);
+    CHECK(std::isnan(x[3 * i]));
+  }
+  for (int i = 3; i < n; ++i) {
+    CHECK(s[i] == meshing::PointStatus::outside);
+    CHECK(t[i] == -1);
+    CHECK(Vec3(x[3 * i], x[3 * i + 1], x[3 * i + 2]).allFinite());
+    CHECK(x[3 * i + 2] == doctest::Approx(0.0));  // a point of the unit square
+  }
+  // 3D -> UV: the same kinds of point.
+  const double p[] = {nan, 0, 0, 0, inf, 0, 0, 0, -inf, 1e200, 0.5, 0.5, -1.7e308, 1.7e308, 1.7e308, 0.5, 0.5, 1e3};
+  double w[2 * n];
+  CHECK(map.xyz_to_uv(n, p, w, s, t) == 3);
+  for (int i = 0; i < 3; ++i) {
+    CHECK(s[i] == meshing::PointStatus::unmapped);
+    CHECK(t[i] == -1);
+    CHECK(std::isnan(w[2 * i]));
+  }
+  for (int i = 3; i < n; ++i) {
+    CHECK(s[i] == meshing::PointStatus::outside);
+    CHECK(std::isfinite(w[2 * i]));
+    CHECK(std::isfinite(w[2 * i + 1]));
+  }
 }
 
 TEST_CASE("200k domain points map UV -> 3D -> UV back to themselves (times reported)") {

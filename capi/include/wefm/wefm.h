@@ -632,13 +632,20 @@ WEFM_API wefm_status wefm_face_get_step_history(const wefm_face* face, double* s
 /* ---- Mapping ------------------------------------------------------------------------------- */
 
 /**
- * Map `n` UV points (2n doubles) to 3D (3n doubles). `point_status` (n int32, may be NULL) gets
- * WEFM_OK or WEFM_ERROR_OUTSIDE_DOMAIN per point (outside points get the nearest domain point's image).
- * `triangles` (n int32, may be NULL) gets the containing triangle or -1.
+ * Map `n` UV points (2n doubles) to 3D (3n doubles). `point_status` (n int32, may be NULL) gets per
+ * point: WEFM_OK (in the domain); WEFM_ERROR_OUTSIDE_DOMAIN (outside: mapped through the nearest
+ * domain point; a point farther than 1e6 domain diameters, up to the largest double, through the
+ * point at that distance in its direction); WEFM_ERROR_INVALID_ARGUMENT (a NaN or infinite
+ * coordinate: its outputs are NaN). `triangles` (n int32, may be NULL) gets the containing triangle
+ * or -1. Every point is mapped and given its status before the call returns.
+ * @return WEFM_ERROR_INVALID_STATE (no result), WEFM_ERROR_INVALID_ARGUMENT (n < 0, or some point is
+ *         not finite: the others are mapped all the same; the message counts them and names the first).
  */
 WEFM_API wefm_status wefm_face_map_uv_to_3d(wefm_face* face, int64_t n, const double* uv, double* xyz,
                                             int32_t* point_status, int32_t* triangles);
-/** Map `n` 3D points (3n doubles) to UV (2n doubles) through the closest point of the triangulation. */
+/** Map `n` 3D points (3n doubles) to UV (2n doubles) through the closest point of the triangulation.
+ *  Per-point statuses, triangles and return values as wefm_face_map_uv_to_3d(): WEFM_ERROR_OUTSIDE_DOMAIN
+ *  for a point farther than 1e-6 of the mesh's bounding-box diagonal from the triangulation. */
 WEFM_API wefm_status wefm_face_map_3d_to_uv(wefm_face* face, int64_t n, const double* xyz, double* uv,
                                             int32_t* point_status, int32_t* triangles);
 

@@ -47,6 +47,7 @@ SurfaceLocator::SurfaceLocator(const TriMesh& mesh) : mesh_(mesh) {
   const size_t nt = std::max<size_t>(1, mesh.triangles.size());
   edge /= static_cast<double>(nt);
   diag_ = (hi - lo_).norm();
+  centre_ = 0.5 * lo_ + 0.5 * hi;
   cell_ = std::max(2.0 * edge, 1e-12 * std::max(diag_, 1e-300));
   // Keep the dense grid near a few cells per triangle.
   for (;;) {
@@ -90,10 +91,14 @@ SurfaceLocator::SurfaceLocator(const TriMesh& mesh) : mesh_(mesh) {
   }
 }
 
-SurfaceHit SurfaceLocator::closest(const Vec3& p) const {
+SurfaceHit SurfaceLocator::closest(const Vec3& q) const {
   SurfaceHit hit;
+  hit.distance = std::numeric_limits<double>::infinity();
+  if (!q.allFinite() || mesh_.triangles.empty()) return hit;
+  const Vec3 p = within_reach(q);
   int c[3];
-  for (int k = 0; k < 3; ++k) c[k] = std::clamp(static_cast<int>(std::floor((p[k] - lo_[k]) / cell_)), 0, n_[k] - 1);
+  // Clamped as a double: a far point's quotient overflows an int.
+  for (int k = 0; k < 3; ++k) c[k] = static_cast<int>(std::clamp(std::floor((p[k] - lo_[k]) / cell_), 0.0, static_cast<double>(n_[k] - 1)));
   double best = std::numeric_limits<double>::infinity();
   const int rmax = std::max({n_[0], n_[1], n_[2]});
   for (int r = 0; r <= rmax; ++r) {
@@ -115,13 +120,33 @@ SurfaceHit SurfaceLocator::closest(const Vec3& p) const {
             }
           }
         }
+    // Cells not yet searched lie beyond the sides of the searched block that are still inside the
+    // grid; a point outside the grid is nearer to none of them than to those sides.
     double margin = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < 3; ++k)
-      margin = std::min({margin, p[k] - (lo_[k] + (c[k] - r) * cell_), (lo_[k] + (c[k] + r + 1) * cell_) - p[k]});
+    for (int k = 0; k < 3; ++k) {
+      if (c[k] - r > 0) margin = std::min(margin, p[k] - (lo_[k] + (c[k] - r) * cell_));
+      if (c[k] + r < n_[k] - 1) margin = std::min(margin, (lo_[k] + (c[k] + r + 1) * cell_) - p[k]);
+    }
     if (hit.tri >= 0 && std::sqrt(best) <= margin) break;
   }
   hit.distance = std::sqrt(best);
+  if (hit.tri >= 0 && !(p == q)) {  // the distance to the point itself, not to its stand-in
+    const Tri& t = mesh_.triangles[static_cast<size_t>(hit.tri)];
+    const Vec3 x = hit.bary[0] * mesh_.vertices[static_cast<size_t>(t[0])] + hit.bary[1] * mesh_.vertices[static_cast<size_t>(t[1])] +
+                   hit.bary[2] * mesh_.vertices[static_cast<size_t>(t[2])];
+    const Vec3 d = 0.5 * x - 0.5 * q;
+    hit.distance = 2 * std::hypot(d.x(), d.y(), d.z());
+  }
   return hit;
+}
+
+Vec3 SurfaceLocator::within_reach(const Vec3& p) const {
+  // Halved differences cannot overflow for finite operands.
+  const Vec3 half = 0.5 * p - 0.5 * centre_;
+  const double len = std::hypot(half.x(), half.y(), half.z());
+  const double reach = kReach * std::max(diag_, 1e-300);
+  if (!(2 * len > reach)) return p;
+  return centre_ + half * (reach / len);
 }
 
 }  // namespace wefm::meshing

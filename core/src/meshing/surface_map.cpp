@@ -18,6 +18,10 @@ SurfaceMap::SurfaceMap(const TriMesh& mesh, const Topology& topo, const VectorXc
 bool SurfaceMap::lift(const P2& p, Vec3& xyz, Vec3* normal) const {
   const UvHit hit = loc_.locate(p);
   xyz = loc_.to_3d(hit);
+  if (hit.tri < 0) {  // p is not finite: no triangle to take a normal from
+    if (normal) *normal = xyz;
+    return false;
+  }
   if (normal) {
     const Tri& t = mesh_.triangles[static_cast<size_t>(hit.tri)];
     Vec3 n = Vec3::Zero();

@@ -31,14 +31,14 @@ UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& 
   const size_t nt = mesh.triangles.size();
   uv_.resize(3 * nt);
   scale_.resize(nt);
-  P2 hi(-1e300, -1e300);
+  hi_ = P2(-1e300, -1e300);
   lo_ = P2(1e300, 1e300);
   for (size_t t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) {
       const Complex z = uv[topo.corner_use[3 * t + static_cast<size_t>(k)]];
       uv_[3 * t + static_cast<size_t>(k)] = P2(z.real(), z.imag());
       lo_ = lo_.cwiseMin(uv_[3 * t + static_cast<size_t>(k)]);
-      hi = hi.cwiseMax(uv_[3 * t + static_cast<size_t>(k)]);
+      hi_ = hi_.cwiseMax(uv_[3 * t + static_cast<size_t>(k)]);
     }
     const Tri& tr = mesh.triangles[t];
     const double a3 = 0.5 * (mesh.vertices[static_cast<size_t>(tr[1])] - mesh.vertices[static_cast<size_t>(tr[0])])
@@ -47,7 +47,7 @@ UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& 
     const double a2 = 0.5 * std::fabs(e1.x() * e2.y() - e1.y() * e2.x());
     scale_[t] = a2 > 0 ? std::sqrt(a3 / a2) : 0.0;
   }
-  const P2 ext = (hi - lo_).cwiseMax(P2(1e-300, 1e-300));
+  const P2 ext = (hi_ - lo_).cwiseMax(P2(1e-300, 1e-300));
   const double cells = std::max<double>(1.0, static_cast<double>(nt));
   const double c = std::sqrt(ext.x() * ext.y() / cells);
   nx_ = std::clamp(static_cast<int>(ext.x() / std::max(c, 1e-300)) + 1, 1, 4096);
@@ -79,10 +79,13 @@ UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& 
   }
 }
 
-UvHit UvLocator::locate(const P2& p) const {
+UvHit UvLocator::locate(const P2& q) const {
   UvHit hit;
-  const int ci = std::clamp(static_cast<int>(std::floor((p.x() - lo_.x()) / cell_.x())), 0, nx_ - 1);
-  const int cj = std::clamp(static_cast<int>(std::floor((p.y() - lo_.y()) / cell_.y())), 0, ny_ - 1);
+  if (!q.allFinite() || start_.empty()) return hit;
+  const P2 p = within_reach(q);
+  // The cell index is clamped as a double: a far point's quotient overflows an int.
+  const int ci = static_cast<int>(std::clamp(std::floor((p.x() - lo_.x()) / cell_.x()), 0.0, static_cast<double>(nx_ - 1)));
+  const int cj = static_cast<int>(std::clamp(std::floor((p.y() - lo_.y()) / cell_.y()), 0.0, static_cast<double>(ny_ - 1)));
   // Inside: the triangle whose smallest barycentric coordinate is largest, so a point on a shared
   // edge picks one triangle deterministically and round-off never leaves it outside.
   double best_min = -1e-12;
@@ -100,39 +103,64 @@ UvHit UvLocator::locate(const P2& p) const {
     }
   }
   if (hit.inside) return hit;
-  // Outside: nearest point of the domain, searching growing rings of cells.
-  double best = std::numeric_limits<double>::infinity();
-  const int rmax = std::max(nx_, ny_);
-  for (int r = 0; r <= rmax; ++r) {
-    for (int j = cj - r; j <= cj + r; ++j)
-      for (int i = ci - r; i <= ci + r; ++i) {
-        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
-        if (std::max(std::abs(i - ci), std::abs(j - cj)) != r) continue;
-        for (Index k = start_[static_cast<size_t>(j * nx_ + i)]; k < start_[static_cast<size_t>(j * nx_ + i) + 1]; ++k) {
-          const Index t = items_[static_cast<size_t>(k)];
-          for (int e = 0; e < 3; ++e) {
-            double s;
-            const double d2 = segment_distance2(p, corner(t, e), corner(t, (e + 1) % 3), s);
-            if (d2 < best) {
-              best = d2;
-              hit.tri = t;
-              hit.bary[e] = 1 - s;
-              hit.bary[(e + 1) % 3] = s;
-              hit.bary[(e + 2) % 3] = 0;
-            }
-          }
-        }
-      }
-    // Everything beyond ring r lies at least (distance to the searched block's edge) away.
-    const double bx0 = lo_.x() + (ci - r) * cell_.x(), bx1 = lo_.x() + (ci + r + 1) * cell_.x();
-    const double by0 = lo_.y() + (cj - r) * cell_.y(), by1 = lo_.y() + (cj + r + 1) * cell_.y();
-    const double margin = std::min({p.x() - bx0, bx1 - p.x(), p.y() - by0, by1 - p.y()});
-    if (hit.tri >= 0 && std::sqrt(best) <= margin) break;
-  }
+  nearest_on_boundary(p, ci, cj, hit);
   return hit;
 }
 
+P2 UvLocator::within_reach(const P2& p) const {
+  // Halved differences cannot overflow for finite operands.
+  const P2 centre = 0.5 * lo_ + 0.5 * hi_;
+  const P2 half = 0.5 * p - 0.5 * centre;
+  const double len = std::hypot(half.x(), half.y());
+  const double reach = kReach * std::max((hi_ - lo_).norm(), 1e-300);
+  if (!(2 * len > reach)) return p;
+  return centre + half * (reach / len);
+}
+
+void UvLocator::nearest_on_boundary(const P2& p, int ci, int cj, UvHit& hit) const {
+  // Nearest point of the domain, searching growing rings of cells.
+  double best = std::numeric_limits<double>::infinity();
+  const int rmax = std::max(nx_, ny_);
+  auto visit = [&](int i, int j) {
+    for (Index k = start_[static_cast<size_t>(j * nx_ + i)]; k < start_[static_cast<size_t>(j * nx_ + i) + 1]; ++k) {
+      const Index t = items_[static_cast<size_t>(k)];
+      for (int e = 0; e < 3; ++e) {
+        double s;
+        const double d2 = segment_distance2(p, corner(t, e), corner(t, (e + 1) % 3), s);
+        if (d2 < best) {
+          best = d2;
+          hit.tri = t;
+          hit.bary[e] = 1 - s;
+          hit.bary[(e + 1) % 3] = s;
+          hit.bary[(e + 2) % 3] = 0;
+        }
+      }
+    }
+  };
+  for (int r = 0; r <= rmax; ++r) {
+    const int i0 = std::max(0, ci - r), i1 = std::min(nx_ - 1, ci + r);
+    const int j0 = std::max(0, cj - r), j1 = std::min(ny_ - 1, cj + r);
+    for (int j = j0; j <= j1; ++j) {
+      if (j == cj - r || j == cj + r) {
+        for (int i = i0; i <= i1; ++i) visit(i, j);
+      } else {
+        if (ci - r >= 0) visit(ci - r, j);
+        if (ci + r < nx_) visit(ci + r, j);
+      }
+    }
+    // Cells not yet searched lie beyond the sides of the searched block that are still inside the
+    // grid; a point outside the grid is nearer to none of them than to those sides.
+    double margin = std::numeric_limits<double>::infinity();
+    if (ci - r > 0) margin = std::min(margin, p.x() - (lo_.x() + (ci - r) * cell_.x()));
+    if (ci + r < nx_ - 1) margin = std::min(margin, (lo_.x() + (ci + r + 1) * cell_.x()) - p.x());
+    if (cj - r > 0) margin = std::min(margin, p.y() - (lo_.y() + (cj - r) * cell_.y()));
+    if (cj + r < ny_ - 1) margin = std::min(margin, (lo_.y() + (cj + r + 1) * cell_.y()) - p.y());
+    if (hit.tri >= 0 && std::sqrt(best) <= margin) break;
+  }
+}
+
 Vec3 UvLocator::to_3d(const UvHit& hit) const {
+  if (hit.tri < 0) return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   const Tri& t = mesh_.triangles[static_cast<size_t>(hit.tri)];
   return hit.bary[0] * mesh_.vertices[static_cast<size_t>(t[0])] + hit.bary[1] * mesh_.vertices[static_cast<size_t>(t[1])] +
          hit.bary[2] * mesh_.vertices[static_cast<size_t>(t[2])];

@@ -8,7 +8,7 @@
 namespace wefm::meshing {
 
 struct SurfaceHit {
-  Index tri = -1;
+  Index tri = -1;  // -1: p is not finite or the mesh has no triangles
   double bary[3] = {0, 0, 0};
   double distance = 0;
 };
@@ -16,12 +16,17 @@ struct SurfaceHit {
 class SurfaceLocator {
  public:
   explicit SurfaceLocator(const TriMesh& mesh);
+  // A point farther than kReach bounding-box diagonals from the mesh is searched from the point at
+  // that distance in its direction, whose squared distances stay finite; `distance` is its own.
+  static constexpr double kReach = 1e6;
   SurfaceHit closest(const Vec3& p) const;
   double bbox_diagonal() const { return diag_; }
 
  private:
+  Vec3 within_reach(const Vec3& p) const;
+
   const TriMesh& mesh_;
-  Vec3 lo_ = Vec3::Zero();
+  Vec3 lo_ = Vec3::Zero(), centre_ = Vec3::Zero();
   double cell_ = 1, diag_ = 0;
   int n_[3] = {1, 1, 1};
   std::vector<Index> start_, items_;

@@ -8,7 +8,8 @@ namespace wefm::meshing {
 class SurfaceMap {
  public:
   SurfaceMap(const TriMesh& mesh, const Topology& topo, const VectorXc& uv);
-  // False when p lies outside the domain; xyz is then the nearest domain point's image.
+  // False when p lies outside the domain; xyz is then the nearest domain point's image (NaN, and
+  // the normal too, when p is not finite).
   bool lift(const P2& p, Vec3& xyz, Vec3* normal = nullptr) const;
   // Derivative of the map at p (columns d xyz / du, d xyz / dv) on the facet holding p, or the
   // nearest one outside. False for a degenerate facet: J is then zero.
