@@ -12,7 +12,9 @@ struct wefm_domain_mesh {
   wefm::meshing::DomainMesh mesh;
 };
 
+using wefm::capi::Access;
 using wefm::capi::guarded;
+using wefm::capi::on_face;
 
 namespace {
 
@@ -42,7 +44,7 @@ extern "C" {
 WEFM_API wefm_status wefm_face_set_edge_nodes(wefm_face* face, int32_t edge, int64_t n, const double* xyz) {
   WEFM_REQUIRE(face, "wefm_face_set_edge_nodes");
   WEFM_REQUIRE(xyz, "wefm_face_set_edge_nodes");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::change, "wefm_face_set_edge_nodes", [&] {
     if (n < 2) throw wefm::Error(wefm::Errc::invalid_argument, "edge nodes must include both end vertices (n = " + std::to_string(n) + ")");
     std::vector<wefm::Vec3> nodes(static_cast<size_t>(n));
     for (int64_t i = 0; i < n; ++i) nodes[static_cast<size_t>(i)] = wefm::Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
@@ -52,7 +54,7 @@ WEFM_API wefm_status wefm_face_set_edge_nodes(wefm_face* face, int32_t edge, int
 
 WEFM_API wefm_status wefm_face_clear_edge_nodes(wefm_face* face) {
   WEFM_REQUIRE(face, "wefm_face_clear_edge_nodes");
-  return guarded(&face->last_error, [&] { face->face.clear_edge_nodes(); });
+  return on_face(face, Access::change, "wefm_face_clear_edge_nodes", [&] { face->face.clear_edge_nodes(); });
 }
 
 WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_options* options, wefm_domain_mesh** out) {
@@ -60,8 +62,8 @@ WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_opti
   WEFM_REQUIRE(options, "wefm_face_mesh_domain");
   WEFM_REQUIRE(out, "wefm_face_mesh_domain");
   *out = nullptr;
-  face->cancel.store(false);
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::change, "wefm_face_mesh_domain", [&] {
+    face->cancel.store(false);
     wefm::capi::check_struct_size(options->struct_size, "wefm_mesh_options");
     const wefm_mesh_options o = wefm::capi::read_versioned(options, default_mesh_options());
     const wefm::FlattenResult& r = face->face.result();

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <new>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "wefm/core/error.hpp"
@@ -19,6 +20,9 @@ struct wefm_face {
   std::atomic<bool> cancel{false};
   wefm_progress_fn progress = nullptr;
   void* progress_user = nullptr;
+  // Set while wefm_face_solve runs: its progress callback may call back into this face, which it
+  // may then only read (wefm.h, "Re-entrancy"); a release of the last reference waits for the end.
+  bool solving = false;
 };
 
 struct wefm_mesh {
@@ -56,6 +60,21 @@ wefm_status guarded(std::string* err, F&& body) noexcept {
     set_thread_error("internal error: unknown exception");
     return WEFM_ERROR_INTERNAL;
   }
+}
+
+// What a call does to its face (wefm.h, "Re-entrancy").
+enum class Access { read, change };
+
+// A call that would change a face while it is solving (from inside its own progress callback):
+// WEFM_ERROR_INVALID_STATE and a message naming `function`.
+wefm_status refuse_while_solving(wefm_face* face, const char* function) noexcept;
+
+// The guard of every call on a face handle: `body` under guarded(), unless it would change a face
+// that is solving. The one place the re-entrancy rule is enforced.
+template <class F>
+wefm_status on_face(wefm_face* face, Access access, const char* function, F&& body) noexcept {
+  if (access == Access::change && face->solving) return refuse_while_solving(face, function);
+  return guarded(&face->last_error, std::forward<F>(body));
 }
 
 // NULL handle: thread-local message, WEFM_ERROR_NULL_ARGUMENT.

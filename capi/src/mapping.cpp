@@ -5,7 +5,8 @@
 #include "handles.hpp"
 #include "wefm/core/meshing/mapping.hpp"
 
-using wefm::capi::guarded;
+using wefm::capi::Access;
+using wefm::capi::on_face;
 using wefm::meshing::PointStatus;
 
 namespace {
@@ -23,8 +24,8 @@ wefm_status to_status(PointStatus s) {
 // tri), which returns how many of them it could not map. Every point gets its per-point status;
 // the call fails with WEFM_ERROR_INVALID_ARGUMENT when any point was not finite.
 template <class F>
-wefm_status map_points(wefm_face* face, int64_t n, int32_t* point_status, int32_t* triangles, F&& run) {
-  return guarded(&face->last_error, [&] {
+wefm_status map_points(wefm_face* face, const char* function, int64_t n, int32_t* point_status, int32_t* triangles, F&& run) {
+  return on_face(face, Access::read, function, [&] {
     if (n < 0) throw wefm::Error(wefm::Errc::invalid_argument, "point count " + std::to_string(n) + " is negative");
     const wefm::FlattenResult& r = face->face.result();
     const wefm::meshing::FaceMapper mapper(face->face.mesh(), face->face.topology(), r.uv);
@@ -57,7 +58,7 @@ WEFM_API wefm_status wefm_face_map_uv_to_3d(wefm_face* face, int64_t n, const do
   WEFM_REQUIRE(face, "wefm_face_map_uv_to_3d");
   WEFM_REQUIRE(uv, "wefm_face_map_uv_to_3d");
   WEFM_REQUIRE(xyz, "wefm_face_map_uv_to_3d");
-  return map_points(face, n, point_status, triangles, [&](const wefm::meshing::FaceMapper& m, int64_t i0, int64_t k, PointStatus* s, wefm::Index* t) {
+  return map_points(face, "wefm_face_map_uv_to_3d", n, point_status, triangles, [&](const wefm::meshing::FaceMapper& m, int64_t i0, int64_t k, PointStatus* s, wefm::Index* t) {
     return m.uv_to_3d(k, uv + 2 * i0, xyz + 3 * i0, s, t);
   });
 }
@@ -66,7 +67,7 @@ WEFM_API wefm_status wefm_face_map_3d_to_uv(wefm_face* face, int64_t n, const do
   WEFM_REQUIRE(face, "wefm_face_map_3d_to_uv");
   WEFM_REQUIRE(xyz, "wefm_face_map_3d_to_uv");
   WEFM_REQUIRE(uv, "wefm_face_map_3d_to_uv");
-  return map_points(face, n, point_status, triangles, [&](const wefm::meshing::FaceMapper& m, int64_t i0, int64_t k, PointStatus* s, wefm::Index* t) {
+  return map_points(face, "wefm_face_map_3d_to_uv", n, point_status, triangles, [&](const wefm::meshing::FaceMapper& m, int64_t i0, int64_t k, PointStatus* s, wefm::Index* t) {
     return m.xyz_to_uv(k, xyz + 3 * i0, uv + 2 * i0, s, t);
   });
 }

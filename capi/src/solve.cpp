@@ -4,13 +4,14 @@
 
 #include "handles.hpp"
 
-using wefm::capi::guarded;
+using wefm::capi::Access;
+using wefm::capi::on_face;
 
 extern "C" {
 
 WEFM_API wefm_status wefm_face_add_pin(wefm_face* face, int32_t use, double u, double v, int32_t* constraint_id) {
   WEFM_REQUIRE(face, "wefm_face_add_pin");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::change, "wefm_face_add_pin", [&] {
     wefm::LinearRow r;
     r.terms.emplace_back(use, wefm::Complex(1, 0));
     r.rhs = wefm::Complex(u, v);
@@ -24,7 +25,7 @@ WEFM_API wefm_status wefm_face_add_constraint(wefm_face* face, int64_t n, const 
   WEFM_REQUIRE(uses, "wefm_face_add_constraint");
   WEFM_REQUIRE(coefficients, "wefm_face_add_constraint");
   WEFM_REQUIRE(rhs, "wefm_face_add_constraint");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::change, "wefm_face_add_constraint", [&] {
     if (n < 1) throw wefm::Error(wefm::Errc::invalid_constraint, "a constraint needs at least one term (n = " + std::to_string(n) + ")");
     wefm::LinearRow r;
     for (int64_t j = 0; j < n; ++j) r.terms.emplace_back(uses[j], wefm::Complex(coefficients[2 * j], coefficients[2 * j + 1]));
@@ -36,20 +37,27 @@ WEFM_API wefm_status wefm_face_add_constraint(wefm_face* face, int64_t n, const 
 
 WEFM_API wefm_status wefm_face_clear_constraints(wefm_face* face) {
   WEFM_REQUIRE(face, "wefm_face_clear_constraints");
-  return guarded(&face->last_error, [&] { face->face.clear_constraints(); });
+  return on_face(face, Access::change, "wefm_face_clear_constraints", [&] { face->face.clear_constraints(); });
 }
 
 WEFM_API wefm_status wefm_face_set_progress_callback(wefm_face* face, wefm_progress_fn fn, void* user_data) {
   WEFM_REQUIRE(face, "wefm_face_set_progress_callback");
-  face->progress = fn;
-  face->progress_user = user_data;
-  return WEFM_OK;
+  return on_face(face, Access::change, "wefm_face_set_progress_callback", [&] {
+    face->progress = fn;
+    face->progress_user = user_data;
+  });
 }
 
 WEFM_API wefm_status wefm_face_solve(wefm_face* face) {
   WEFM_REQUIRE(face, "wefm_face_solve");
-  face->cancel.store(false);
-  return guarded(&face->last_error, [&] {
+  const wefm_status status = on_face(face, Access::change, "wefm_face_solve", [&] {
+    face->cancel.store(false);
+    face->solving = true;
+    // Cleared however the solve ends, so the face is never left refusing changes.
+    struct Done {
+      wefm_face* f;
+      ~Done() { f->solving = false; }
+    } done{face};
     wefm::ProgressFn progress;
     if (face->progress) {
       progress = [face](double f, const char* stage) {
@@ -64,6 +72,9 @@ WEFM_API wefm_status wefm_face_solve(wefm_face* face) {
     }
     face->face.solve(progress, &face->cancel);
   });
+  // The callback released the last reference: the face outlived its solve and goes now.
+  if (!face->solving && face->refs.load() == 0) delete face;
+  return status;
 }
 
 WEFM_API wefm_status wefm_face_cancel(wefm_face* face) {
@@ -82,7 +93,7 @@ WEFM_API wefm_status wefm_face_has_result(const wefm_face* face, int32_t* solved
 WEFM_API wefm_status wefm_face_get_uv(wefm_face* face, double* uv, int64_t capacity, int64_t* count) {
   WEFM_REQUIRE(face, "wefm_face_get_uv");
   WEFM_REQUIRE(count, "wefm_face_get_uv");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::read, "wefm_face_get_uv", [&] {
     const wefm::VectorXc& z = face->face.result().uv;
     wefm::capi::copy_out_records(static_cast<std::size_t>(z.size()), 2, uv, capacity, count, [&](std::size_t u, double* out) {
       out[0] = z[static_cast<wefm::Index>(u)].real();
@@ -94,7 +105,7 @@ WEFM_API wefm_status wefm_face_get_uv(wefm_face* face, double* uv, int64_t capac
 WEFM_API wefm_status wefm_face_get_edge_modes(wefm_face* face, int32_t* modes, int64_t capacity, int64_t* count) {
   WEFM_REQUIRE(face, "wefm_face_get_edge_modes");
   WEFM_REQUIRE(count, "wefm_face_get_edge_modes");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::read, "wefm_face_get_edge_modes", [&] {
     std::vector<int32_t> v;
     for (wefm::EdgeMode m : face->face.result().edge_modes) v.push_back(static_cast<int32_t>(m));
     wefm::capi::copy_out(v, modes, capacity, count);
@@ -104,7 +115,7 @@ WEFM_API wefm_status wefm_face_get_edge_modes(wefm_face* face, int32_t* modes, i
 WEFM_API wefm_status wefm_face_get_edge_scores(wefm_face* face, int32_t edge, double* scores, int64_t capacity, int64_t* count) {
   WEFM_REQUIRE(face, "wefm_face_get_edge_scores");
   WEFM_REQUIRE(count, "wefm_face_get_edge_scores");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::read, "wefm_face_get_edge_scores", [&] {
     const auto& all = face->face.result().edge_scores;
     if (edge < 0 || static_cast<size_t>(edge) >= all.size())
       throw wefm::Error(wefm::Errc::out_of_range, "edge " + std::to_string(edge) + " does not exist (" + std::to_string(all.size()) + " edges)");
@@ -116,7 +127,7 @@ WEFM_API wefm_status wefm_face_get_edge_scores(wefm_face* face, int32_t edge, do
 WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* report) {
   WEFM_REQUIRE(face, "wefm_face_get_report");
   WEFM_REQUIRE(report, "wefm_face_get_report");
-  return guarded(const_cast<std::string*>(&face->last_error), [&] {
+  return on_face(const_cast<wefm_face*>(face), Access::read, "wefm_face_get_report", [&] {
     wefm::capi::check_struct_size(report->struct_size, "wefm_report");
     const wefm::SolveReport& s = face->face.result().report;
     wefm_report r{};
@@ -168,7 +179,7 @@ WEFM_API wefm_status wefm_face_get_report(const wefm_face* face, wefm_report* re
 WEFM_API wefm_status wefm_face_get_step_history(const wefm_face* face, double* steps, int64_t capacity, int64_t* count) {
   WEFM_REQUIRE(face, "wefm_face_get_step_history");
   WEFM_REQUIRE(count, "wefm_face_get_step_history");
-  return guarded(const_cast<std::string*>(&face->last_error), [&] {
+  return on_face(const_cast<wefm_face*>(face), Access::read, "wefm_face_get_step_history", [&] {
     std::vector<double> v;
     for (const wefm::StepInfo& s : face->face.result().steps) v.insert(v.end(), {s.s, static_cast<double>(s.iterations), s.rho_change});
     wefm::capi::copy_out(v, steps, capacity, count);
@@ -178,7 +189,7 @@ WEFM_API wefm_status wefm_face_get_step_history(const wefm_face* face, double* s
 WEFM_API wefm_status wefm_face_write_obj(wefm_face* face, const char* path) {
   WEFM_REQUIRE(face, "wefm_face_write_obj");
   WEFM_REQUIRE(path, "wefm_face_write_obj");
-  return guarded(&face->last_error, [&] {
+  return on_face(face, Access::read, "wefm_face_write_obj", [&] {
     const wefm::FlattenResult& r = face->face.result();
     wefm::write_obj_uv(path, face->face.mesh(), face->face.topology(), r.uv);
   });

@@ -15,6 +15,17 @@ void set_thread_error(const std::string& message) {
   }
 }
 
+wefm_status refuse_while_solving(wefm_face* face, const char* function) noexcept {
+  try {
+    face->last_error = std::string(function) +
+                       ": the face is solving (a call from inside its own progress callback?): only wefm_face_cancel, "
+                       "wefm_face_retain/release and calls that read the face are allowed until wefm_face_solve returns";
+    set_thread_error(face->last_error);
+  } catch (...) {
+  }
+  return WEFM_ERROR_INVALID_STATE;
+}
+
 wefm_status null_argument(const char* function, const char* argument) {
   set_thread_error(std::string(function) + ": argument '" + argument + "' is NULL");
   return WEFM_ERROR_NULL_ARGUMENT;

@@ -63,6 +63,15 @@
  *              arrays) a host on glibc >= 2.35 reaches by starting with
  *              GLIBC_TUNABLES=glibc.malloc.hugetlb=1 in its environment, as the wefm tool does
  *              (a 1M-triangle solve: about 100k faults -> 11k; apps/README.md, "Environment").
+ * Re-entrancy. A progress callback may call back into the face that is solving, but only to read it
+ *              or stop it: wefm_face_cancel, wefm_face_retain, wefm_face_release, wefm_face_last_error,
+ *              wefm_face_has_result, wefm_face_get_options, the topology queries (*_count, get_edge,
+ *              get_loop, get_*_uses, ...) and the queries of the previous result (get_uv, get_report,
+ *              get_edge_modes, get_edge_scores, get_step_history, map_*, write_obj). Every call that
+ *              would change the face (set_*, add_*, clear_*, build, solve, mesh_domain, set_edge_nodes,
+ *              set_progress_callback) returns WEFM_ERROR_INVALID_STATE until wefm_face_solve returns.
+ *              A release of the last reference from the callback does not free the face under its
+ *              solve: wefm_face_solve frees it as it returns (the caller must not use it after).
  * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or
@@ -534,7 +543,8 @@ WEFM_API wefm_status wefm_face_clear_constraints(wefm_face* face);
 /**
  * Progress callback: `fraction` in [0,1], `stage` one of "topology", "coefficients", "assembly",
  * "factorise", "solve", "repeated edges", "continuation", "rollout", "quality", "done", "mesh".
- * Return non-zero to cancel. Called on the solving thread.
+ * Return non-zero to cancel. Called on the solving thread. It may only read or cancel the face it
+ * reports on (see "Re-entrancy" in the conventions): changes return WEFM_ERROR_INVALID_STATE.
  */
 typedef int (*wefm_progress_fn)(void* user_data, double fraction, const char* stage);
 /** Set (or with fn = NULL remove) the progress callback of later solves; `user_data` is passed back
