@@ -13,6 +13,8 @@
 namespace wefm::meshing {
 namespace {
 constexpr Index kSuper = 3;
+// Squared distance, relative to the cavity's longest rim edge, below which a new point is an old node.
+constexpr double kSameNode2 = 1e-12;
 inline int nx(int i) { return (i + 1) % 3; }
 inline int pv(int i) { return (i + 2) % 3; }
 }  // namespace
@@ -177,6 +179,22 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
       }
     }
   }
+  // A refinement point a rounding away from a node (the apex on an encroached segment where the front
+  // already put a node) would make triangles of no area, which refinement then splits without end.
+  // (Boundary nodes, inserted without `encroached`, are checked exactly: the caller merged close ones.)
+  double scale2 = 0;
+  for (const Rim& r : rim) scale2 = std::max(scale2, (pts_[r.b] - pts_[r.a]).squaredNorm());
+  for (size_t k = 0; ok && encroached && k < rim.size(); ++k)
+    if ((pts_[rim[k].a] - p).squaredNorm() <= kSameNode2 * scale2) ok = false;
+  // Every node of the cavity stays on its rim. A node inside it (the point a rounding away from it,
+  // its triangles all taken) would drop out of the triangulation and come back later as a second node
+  // at the same place: zero-area triangles.
+  for (size_t k = 0; ok && k < cav.size(); ++k)
+    for (Index w : tris_[cav[k]].v)
+      if (std::none_of(rim.begin(), rim.end(), [w](const Rim& r) { return r.a == w; })) {
+        ok = false;
+        break;
+      }
   for (Index t : cav) mark[t] = 0;
   if (!ok) return -1;
   const bool inside = tris_[t0].inside;
