@@ -9,6 +9,10 @@ namespace wefm_cad {
 
 namespace {
 
+// The smallest local size, as a fraction of h: a face narrower than h / 32 keeps slivers (a needle
+// face cannot ask for millions of elements along its long edges).
+constexpr double kNarrowestFraction = 32;
+
 double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
@@ -145,7 +149,7 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
     for (const auto& loop : f.loops)
       for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
-    if (perimeter > 0) sizes[k] = std::clamp(2 * area / perimeter, h / 4, h);
+    if (perimeter > 0) sizes[k] = std::clamp(2 * area / perimeter, h / kNarrowestFraction, h);
   }
   return sizes;
 }
