@@ -121,8 +121,8 @@ def one(a, model, ratio):
         return row
     h = row.get("h")
     if h is None:
-        h = ratio * diagonal(model, a)
-        row["h"] = h
+        d = diagonal(model, a)
+        h = row["h"] = ratio * d if d else None
     if h:
         g_msh = base + ".gmsh.msh"
         if os.path.exists(g_msh):
@@ -138,8 +138,8 @@ def one(a, model, ratio):
 def diagonal(model, a):
     """The bounding-box diagonal from wefm's import, for models wefm could not mesh."""
     try:
-        out = subprocess.run([a.wefm, "mesh-model", model, "--size", "1e300", "-o", os.path.join(a.outdir, "diag.msh"), "-q",
-                              "--report", os.path.join(a.outdir, "diag.json")], capture_output=True, timeout=a.timeout)
+        subprocess.run([a.wefm, "mesh-model", model, "--size", "1e300", "-o", os.path.join(a.outdir, "diag.msh"), "-q",
+                              "--report", os.path.join(a.outdir, "diag.json")], capture_output=True, timeout=min(a.timeout, 120))
         return json.load(open(os.path.join(a.outdir, "diag.json")))["bbox_diagonal"]
     except (OSError, ValueError, KeyError, subprocess.TimeoutExpired):
         return None
