@@ -46,9 +46,9 @@ std::string describe(int status) {
   char buf[96];
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
-    std::snprintf(buf, sizeof buf, "killed by signal %d (%s)", sig, strsignal(sig));
+    std::snprintf(buf, sizeof buf, "was killed by signal %d (%s)", sig, strsignal(sig));
   } else {
-    std::snprintf(buf, sizeof buf, "exited with status %d", WEXITSTATUS(status));
+    std::snprintf(buf, sizeof buf, "ended with status %d", WEXITSTATUS(status));
   }
   return buf;
 }

@@ -12,7 +12,7 @@ namespace wefm_cli {
 struct ChildOutcome {
   enum Kind { kDone, kStopped, kTimedOut, kFailed } kind = kFailed;
   std::string bytes;    // kDone: everything the child wrote
-  std::string problem;  // kFailed: what happened to the child ("killed by signal 11 (SIGSEGV)", ...)
+  std::string problem;  // kFailed: what happened to the child ("was killed by signal 11 (Segmentation fault)")
 };
 
 // `seconds` > 0 bounds the child's run (besides the stop requests).

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The CAD import is bounded and can be stopped: import_limits_test.py WEFM CAD_SAMPLE_DIR
+"""The CAD import is bounded and can be stopped: import_limits_test.py WEFM CYLINDER.step CAD_SAMPLE_DIR
 
 Open CASCADE cannot be interrupted, so `wefm model` and `mesh-model` run the import in a child
 process (apps/wefm/child_process.hpp) that is killed at --time-limit or on Ctrl-C. Inputs:
@@ -7,8 +7,11 @@ process (apps/wefm/child_process.hpp) that is killed at --time-limit or on Ctrl-
   * the sample screw.step with one coordinate changed to 1.E308 (line 414), which keeps Open
     CASCADE busy for more than 10 minutes (BSplCLib::KnotAnalysis); taken from CAD_SAMPLE_DIR and
     copied to a temporary folder. Without it those checks are skipped (the BREP ones still run).
+  * the checked-in cylinder.step with one entity name garbled (#12 CART'ESIAN_POINT), on which
+    Open CASCADE 7.6 dereferences a null point and crashes (found by fuzz_cad_import).
 Checks: exit 7 with a message naming the limit; exit 6 on SIGINT and SIGTERM; a second SIGTERM kills
-the tool, and no import process outlives it. A hang fails by the subprocess timeout (limit + 60 s).
+the tool, and no import process outlives it; a crash inside Open CASCADE is exit 3 naming the signal,
+not a crash of the tool. A hang fails by the subprocess timeout (limit + 60 s).
 """
 import os
 import shutil
@@ -86,9 +89,24 @@ def check_signals(wefm, model, tmp):
     assert not wait_gone(model), "an import process outlived the tool after a second SIGTERM"
 
 
+def check_crash(wefm, cylinder, tmp):
+    with open(cylinder) as f:
+        text = f.read()
+    assert "#12 = CARTESIAN_POINT(" in text
+    bad = os.path.join(tmp, "null_point.step")
+    with open(bad, "w") as f:
+        f.write(text.replace("#12 = CARTESIAN_POINT(", "#12 = CART'ESIAN_POINT(", 1))
+    for command, extra in (("model", ["-o", os.path.join(tmp, "crash")]), ("mesh-model", ["-o", bad + ".msh", "--size", "2"])):
+        p, _ = run(wefm, [command, bad, *extra, "-q"], 120)
+        print(f"{command} null_point.step: exit {p.returncode}: {p.stderr.strip()}")
+        # Open CASCADE versions that refuse the file instead of crashing answer exit 3 as well.
+        assert p.returncode == 3 and "null_point.step" in p.stderr, (command, p.returncode, p.stderr)
+
+
 def main():
-    wefm, samples = sys.argv[1], sys.argv[2]
+    wefm, cylinder, samples = sys.argv[1], sys.argv[2], sys.argv[3]
     with tempfile.TemporaryDirectory(prefix="wefm_cad_limits_") as tmp:
+        check_crash(wefm, cylinder, tmp)
         brep = os.path.join(tmp, "locations.brep")
         with open(brep, "w") as f:
             f.write("DBRep_DrawableShape\n\nCASCADE Topology V1, (c) Matra-Datavision\nLocations 999999999\n")
