@@ -83,20 +83,10 @@ std::vector<LoopNodes> discretise_loops(const TriMesh& mesh, const Topology& top
   // elements around it.
   for (const auto& ch : topo.edges)
     if (!ch.empty() && ch.front() != ch.back()) breaks.insert(ch.front()), breaks.insert(ch.back());
-  // A corner inside an edge whose nodes the caller gave is no break: a node there would be one the
-  // faces sharing the edge do not have (a T-junction, a crack in the model's mesh).
-  std::set<Index> inside_given;
-  for (const auto& [e, nodes] : given) {
-    (void)nodes;
-    if (e < 0 || e >= static_cast<Index>(topo.edges.size())) continue;
-    const auto& ch = topo.edges[static_cast<size_t>(e)];
-    for (size_t k = 1; k + 1 < ch.size(); ++k) inside_given.insert(ch[k]);
-  }
   for (Index l = 0; l < static_cast<Index>(topo.loop_uses.size()); ++l)
-    for (size_t j = 0; j < topo.loop_uses[static_cast<size_t>(l)].size(); ++j) {
-      const Index v = topo.use_vertex[static_cast<size_t>(topo.loop_uses[static_cast<size_t>(l)][j])];
-      if (!inside_given.count(v) && std::fabs(turning_angle(topo, uv, l, j)) > corner_angle_rad) breaks.insert(v);
-    }
+    for (size_t j = 0; j < topo.loop_uses[static_cast<size_t>(l)].size(); ++j)
+      if (std::fabs(turning_angle(topo, uv, l, j)) > corner_angle_rad)
+        breaks.insert(topo.use_vertex[static_cast<size_t>(topo.loop_uses[static_cast<size_t>(l)][j])]);
 
   // Pieces between breaks, per loop: their break positions and uniform segment counts.
   struct LoopPieces {
