@@ -24,7 +24,7 @@ class Writer {
   template <class T>
   void vec(const std::vector<T>& v) {
     pod<uint64_t>(v.size());
-    out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) out_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   std::string take() { return std::move(out_); }
 
@@ -55,7 +55,7 @@ class Reader {
     uint64_t n = 0;
     if (!count(n, sizeof(T))) return false;
     v.resize(n);
-    std::memcpy(v.data(), in_.data(), n * sizeof(T));
+    if (n) std::memcpy(v.data(), in_.data(), n * sizeof(T));  // an empty vector's data() may be null
     in_.remove_prefix(n * sizeof(T));
     return true;
   }
