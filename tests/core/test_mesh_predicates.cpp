@@ -127,3 +127,62 @@ TEST_CASE("a boundary that touches itself is refused with invalid_state, not a c
   const std::vector<std::array<Index, 2>> segs2 = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 4}};
   CHECK_THROWS_AS(meshing::Triangulation(pts2, segs2), Error);
 }
+
+TEST_CASE("a segment given both ways is a scar: meshed as an edge with the domain on both sides") {
+  // A square with a slit from the middle of its bottom side to its centre: the boundary runs up
+  // one side of the slit and back down the other, through the same nodes.
+  const std::vector<P2> pts = {P2(0, 0), P2(1, 0), P2(2, 0), P2(2, 2), P2(0, 2), P2(1, 1)};
+  const std::vector<std::array<Index, 2>> segs = {{0, 1}, {1, 5}, {5, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 0}};
+  meshing::Triangulation tr(pts, segs);
+  CHECK(tr.valid());
+  double area = 0;
+  int on_slit = 0;
+  for (const auto& t : tr.triangles()) {
+    area += 0.5 * meshing::orient2d(tr.node(t[0]), tr.node(t[1]), tr.node(t[2]));
+    for (int k = 0; k < 3; ++k) on_slit += (t[k] == 1 && t[(k + 1) % 3] == 5) || (t[k] == 5 && t[(k + 1) % 3] == 1);
+  }
+  CHECK(area == doctest::Approx(4.0));  // the whole square: both sides of the slit are inside
+  CHECK(on_slit == 2);                  // the slit is an edge of two triangles, one each side
+  // Refinement never splits it and never puts a node on top of another.
+  tr.refine([&](Index a, Index b, Index c) { return std::max({(tr.node(a) - tr.node(b)).norm(), (tr.node(b) - tr.node(c)).norm(), (tr.node(c) - tr.node(a)).norm()}) > 0.3 ? 1 : 0; },
+            25 * kPi / 180, 0, [](Index) {});
+  CHECK(tr.valid());
+  for (const auto& t : tr.triangles()) CHECK(meshing::orient2d(tr.node(t[0]), tr.node(t[1]), tr.node(t[2])) > 1e-6);
+}
+
+TEST_CASE("boundary segments that cross are refused with invalid_state, not a leak of the outside") {
+  // A bow tie: the loop's second and fourth segments cross.
+  const std::vector<P2> pts = {P2(0, 0), P2(2, 0), P2(0, 2), P2(2, 2)};
+  const std::vector<std::array<Index, 2>> segs = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  try {
+    meshing::Triangulation tr(pts, segs);
+    FAIL("accepted crossing segments");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::invalid_state);
+  }
+}
+
+TEST_CASE("a refinement point within a rounding of a node is refused") {
+  std::vector<P2> pts;
+  std::vector<std::array<Index, 2>> segs;
+  // The unit square, counter-clockwise, four segments a side (points at 1/8 from them encroach none).
+  for (int k = 0; k < 4; ++k) pts.emplace_back(0.25 * k, 0.0);
+  for (int k = 0; k < 4; ++k) pts.emplace_back(1.0, 0.25 * k);
+  for (int k = 0; k < 4; ++k) pts.emplace_back(1.0 - 0.25 * k, 1.0);
+  for (int k = 0; k < 4; ++k) pts.emplace_back(0.0, 1.0 - 0.25 * k);
+  for (Index k = 0; k < 16; ++k) segs.push_back({k, (k + 1) % 16});
+  meshing::Triangulation tr(pts, segs);
+  // Refinement starts its search inside the domain (from outside, the walk stops at the boundary).
+  auto inside = [&] {
+    for (Index t = 0; t < tr.slot_count(); ++t)
+      if (tr.live(t) && tr.inside(t)) return t;
+    return Index(-1);
+  };
+  std::array<Index, 2> enc{{-1, -1}};
+  const Index v = tr.insert(P2(0.55, 0.45), inside(), &enc);
+  REQUIRE(v >= 0);
+  CHECK(tr.insert(P2(std::nextafter(0.55, 1.0), 0.45), inside(), &enc) < 0);
+  CHECK(tr.insert(P2(0.55, 0.45 + 1e-12), inside(), &enc) < 0);
+  CHECK(tr.insert(P2(0.55, 0.6), inside(), &enc) >= 0);
+  CHECK(tr.valid());
+}

@@ -36,15 +36,29 @@ void boundary_nodes(const std::vector<LoopNodes>& loops, std::vector<P2>& pts, s
   std::vector<size_t> order(all.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return all[a].x() < all[b].x(); });
+  // Each loop node's representative: the first in loop order among those at its point, so the
+  // boundary nodes keep the loops' order.
+  std::vector<size_t> rep(all.size());
+  for (size_t k = 0; k < rep.size(); ++k) rep[k] = k;
+  auto root = [&](size_t k) {
+    while (rep[k] != k) k = rep[k];
+    return k;
+  };
+  for (size_t i = 0; i < order.size(); ++i)
+    for (size_t j = i + 1; j < order.size() && all[order[j]].x() - all[order[i]].x() <= tol; ++j)
+      if ((all[order[j]] - all[order[i]]).norm() <= tol) {
+        const size_t a = root(order[i]), b = root(order[j]);
+        rep[std::max(a, b)] = std::min(a, b);
+      }
   std::vector<Index> node(all.size(), -1);
-  std::vector<size_t> first_of;  // a representative loop node per merged node
-  for (size_t i = 0; i < order.size(); ++i) {
-    const size_t a = order[i];
-    if (node[a] >= 0) continue;
-    node[a] = static_cast<Index>(first_of.size());
-    first_of.push_back(a);
-    for (size_t j = i + 1; j < order.size() && all[order[j]].x() - all[a].x() <= tol; ++j)
-      if (node[order[j]] < 0 && (all[order[j]] - all[a]).norm() <= tol) node[order[j]] = node[a];
+  std::vector<size_t> first_of;  // the representative loop node of each merged node
+  for (size_t k = 0; k < all.size(); ++k) {
+    const size_t r = root(k);
+    if (node[r] < 0) {
+      node[r] = static_cast<Index>(first_of.size());
+      first_of.push_back(r);
+    }
+    node[k] = node[r];
   }
   std::vector<const Vec3*> at(all.size());
   size_t base = 0;

@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""`wefm mesh-model` on a CI-sized subset of the public models in shared/data/cad-more, at 1/40 of the
+bounding-box diagonal (the full run over every model against Gmsh is bench/stress/run_models.py).
+
+Each model here once broke a property of issue 28: a face the flattener gives a scar seam (tori and
+cones of gmsh_Solid_56) was refused; a refinement cascade hung on occt_MODERN_Chair_1 f135 and left
+zero-area triangles on gmsh_1385_Laufrad_1000; nodeocc_kuka crashed the process. For each: no crash, an
+exit code that tells the truth about the mesh (0 only when every face is meshed and every edge is used
+as the B-rep says), and where it is 0, no zero-area triangle and a sound lambda.
+
+usage: model_mesh_test.py WEFM CAD_MORE_DIR
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from collections import Counter
+
+# (model, must be clean): clean = exit 0, every face meshed, every edge as the B-rep says.
+MODELS = [("gmsh_Solid_56.step", True), ("occt_MODERN_Chair_1.brep", True), ("gmsh_1385_Laufrad_1000.stp", True),
+          ("gmsh_cube_filet.stp", True), ("nodeocc_kuka.stp", False)]
+
+
+def read_msh_triangles(path):
+    lines = open(path).read().split("\n")
+    tris, i = [], lines.index("$Elements") + 2
+    while lines[i] != "$EndElements":
+        etype, n = map(int, lines[i].split()[2:4])
+        if etype == 2:
+            tris += [tuple(map(int, s.split()[1:4])) for s in lines[i + 1:i + 1 + n]]
+        i += 1 + n
+    return tris
+
+
+def check(wefm, path, clean, tmp):
+    name = os.path.basename(path)
+    msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-j", "2", "-q"],
+                       capture_output=True, text=True, timeout=600)
+    assert p.returncode in (0, 5), f"{name}: exit {p.returncode} (a crash or a refusal): {p.stderr[-2000:]}"
+    r = json.load(open(rep))
+    c = r["conformity"]
+    failed = [f for f in r["faces"] if f["status"] == "failed"]
+    defects = bool(failed or c["unexplained_open_edges"] or c["unexplained_non_manifold_edges"] or c["zero_area_triangles"])
+    # The exit code and the report agree: exit 0 exactly when nothing is wrong.
+    assert (p.returncode == 0) == (not defects), f"{name}: exit {p.returncode} but failed faces {len(failed)}, conformity {c}"
+    for f in failed:
+        assert f["reason"], f"{name}: face {f['face']} failed without a reason"
+        assert f"face {f['face']}" in p.stderr, f"{name}: face {f['face']} not named on stderr"
+    if defects:
+        assert "does not conform" in p.stderr or failed, p.stderr[-2000:]
+    # The counts in the report are the mesh's own: recount open and non-manifold edges from the file.
+    uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for t in read_msh_triangles(msh) for i in range(3))
+    assert sum(1 for n in uses.values() if n == 1) == c["open_edges"], name
+    assert sum(1 for n in uses.values() if n > 2) == c["non_manifold_edges"], name
+    if clean:
+        assert p.returncode == 0, f"{name}: exit {p.returncode}: {p.stderr[-2000:]}"
+        assert r["lambda_mesh"] >= 0.85 and r["lambda_min"] > 0.01, (name, r["lambda_mesh"], r["lambda_min"])
+    print(f"{name}: exit {p.returncode}, {r['triangles']} triangles, lambda_mesh {r['lambda_mesh']:.3f}, min {r['lambda_min']:.3f}, "
+          f"{len(failed)} failed faces, conformity {c['unexplained_open_edges']}/{c['unexplained_non_manifold_edges']} unexplained")
+
+
+def main():
+    wefm, folder = sys.argv[1:3]
+    missing = [m for m, _ in MODELS if not os.path.exists(os.path.join(folder, m))]
+    if missing:
+        print(f"the models {missing} are not in {folder}")
+        return 1
+    with tempfile.TemporaryDirectory() as tmp:
+        for m, clean in MODELS:
+            check(wefm, os.path.join(folder, m), clean, tmp)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
