@@ -88,6 +88,8 @@ struct FaceMeshRun {
   double time_solve = 0, time_mesh = 0;
   double score = NAN;
   int64_t flips = 0;
+  wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
+  int edge_refinements = 0;           // times its edges were discretised again (refine_for_failed_faces)
 };
 
 Json defect_edges_json(const ConformityCounts& conf) {
@@ -158,6 +160,7 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   }
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
   r.time_mesh = since(t1);
+  r.mesh_status = st;
   if (st != WEFM_OK || !dm_raw)
     return fail(st == WEFM_ERROR_CANCELLED ? stop_exit_code() : kExitSolver,
                 std::string("mesh: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
@@ -185,6 +188,46 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   } else {
     r.tris = std::move(elements);
   }
+}
+
+// A face whose domain boundary, discretised at its edges' nodes, crosses itself (chords of a coarse
+// edge cutting across a narrow part of the domain) is meshed again with finer nodes on its edges:
+// its size halves, every edge whose nodes change is discretised again, and every face using such
+// an edge is meshed again with the new nodes, so the model stays conforming. At most this many rounds.
+constexpr int kEdgeRefinements = 3;
+
+bool boundary_failure(const FaceMeshRun& r) {
+  return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE;
+}
+
+std::vector<size_t> refine_for_failed_faces(const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs, double size,
+                                            double gradation, std::vector<double>& face_sizes,
+                                            std::map<long long, wefm_cad::EdgeNodes>& edge_nodes) {
+  std::set<size_t> faces;
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (boundary_failure(runs[i])) {
+      face_sizes[i] *= 0.5;
+      faces.insert(i);
+    }
+  if (faces.empty()) return {};
+  auto finer = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
+  std::set<long long> changed;
+  for (const auto& [id, nodes] : finer) {
+    const auto it = edge_nodes.find(id);
+    if (it == edge_nodes.end() || it->second.xyz != nodes.xyz) changed.insert(id);
+  }
+  edge_nodes = std::move(finer);
+  for (size_t i = 0; i < runs.size(); ++i)
+    for (const wefm_cad::CadEdge& e : model.faces[i].edges)
+      if (changed.count(e.id)) faces.insert(i);
+  std::vector<size_t> todo(faces.begin(), faces.end());
+  for (size_t i : todo) {
+    const int refined = runs[i].edge_refinements + 1;
+    runs[i] = FaceMeshRun{};
+    runs[i].face = &model.faces[i];
+    runs[i].edge_refinements = refined;
+  }
+  return todo;
 }
 
 int run_mesh_model(const std::vector<std::string>& argv) {
@@ -268,7 +311,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     face_sizes = wefm_cad::local_face_sizes(model, size);
     gradation = 0.3;
   }
-  const auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
+  auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
   const double time_edges = since(t_edges);
 
   wefm_mesh_options free_options, tf_options;
@@ -282,27 +325,38 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   CancelWatcher watcher;
   std::vector<FaceMeshRun> runs(model.faces.size());
   for (size_t i = 0; i < runs.size(); ++i) runs[i].face = &model.faces[i];
-  std::atomic<size_t> next{0}, finished{0};
   std::mutex print_mutex;
-  const auto t_faces = Clock::now();
-  auto worker = [&] {
-    for (size_t i; !interrupted() && (i = next++) < runs.size();) {
-      FaceMeshRun& r = runs[i];
-      wefm_mesh_options options = transfinite.count(r.face->index) ? tf_options : free_options;
-      options.size = face_sizes[i];
-      mesh_one_face(r, settings, options, edge_nodes, watcher);
-      const size_t done = ++finished;
-      if (!quiet) {
-        std::lock_guard<std::mutex> lock(print_mutex);
-        std::fprintf(stderr, "[%zu/%zu] f%03d %s: %s (%.2f s)\n", done, runs.size(), r.face->index,
-                     r.face->surface_type.c_str(), r.status.c_str(), r.time_solve + r.time_mesh);
-      }
-    }
-  };
-  std::vector<std::thread> threads;
   const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), std::max<size_t>(1, runs.size()));
-  for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
-  for (auto& t : threads) t.join();
+  auto mesh_faces = [&](const std::vector<size_t>& todo) {
+    std::atomic<size_t> next{0}, finished{0};
+    auto worker = [&] {
+      for (size_t k; !interrupted() && (k = next++) < todo.size();) {
+        const size_t i = todo[k];
+        FaceMeshRun& r = runs[i];
+        wefm_mesh_options options = transfinite.count(r.face->index) ? tf_options : free_options;
+        options.size = face_sizes[i];
+        mesh_one_face(r, settings, options, edge_nodes, watcher);
+        const size_t done = ++finished;
+        if (!quiet) {
+          std::lock_guard<std::mutex> lock(print_mutex);
+          std::fprintf(stderr, "[%zu/%zu] f%03d %s: %s (%.2f s)\n", done, todo.size(), r.face->index,
+                       r.face->surface_type.c_str(), r.status.c_str(), r.time_solve + r.time_mesh);
+        }
+      }
+    };
+    std::vector<std::thread> threads;
+    for (size_t t = 0; t < std::min(n_threads, todo.size()); ++t) threads.emplace_back(worker);
+    for (auto& t : threads) t.join();
+  };
+  const auto t_faces = Clock::now();
+  std::vector<size_t> todo(runs.size());
+  for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
+  mesh_faces(todo);
+  for (int round = 0; round < kEdgeRefinements && !interrupted(); ++round) {
+    todo = refine_for_failed_faces(model, runs, size, gradation, face_sizes, edge_nodes);
+    if (todo.empty()) break;
+    mesh_faces(todo);
+  }
   const double time_faces = since(t_faces);
 
   // Weld at a tolerance far below the size and the facet lengths, far above rounding.
@@ -393,7 +447,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
                        {"lambda_min", fq.triangles ? Json(fq.lambda_min) : Json(nullptr)},
                        {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
                        {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
-                       {"flatten_flips", r.flips},
+                       {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements},
                        {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
     }
     rep["faces"] = faces;
