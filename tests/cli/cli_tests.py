@@ -586,22 +586,27 @@ CASES.update(info=case_info, batch=case_batch, usage=case_usage, unreadable=case
              huge_page_malloc=case_huge_page_malloc, threads=case_threads)
 
 
-def main():
+def run_cases(cases, script):
+    """The drivers' command line: SCRIPT WEFM_BINARY CASE|all, each case in a fresh temporary folder."""
     global WEFM
-    if len(sys.argv) != 3 or sys.argv[2] not in list(CASES) + ["all"]:
-        print(f"usage: cli_tests.py WEFM_BINARY CASE  (CASE: all, {', '.join(CASES)})")
+    if len(sys.argv) != 3 or sys.argv[2] not in list(cases) + ["all"]:
+        print(f"usage: {script} WEFM_BINARY CASE  (CASE: all, {', '.join(cases)})")
         return 2
     WEFM = os.path.abspath(sys.argv[1])
     failed = 0
-    for name in (CASES if sys.argv[2] == "all" else [sys.argv[2]]):
+    for name in (cases if sys.argv[2] == "all" else [sys.argv[2]]):
         with tempfile.TemporaryDirectory(prefix=f"wefm_cli_{name}_") as tmp:
             try:
-                CASES[name](tmp)
+                cases[name](tmp)
                 print(f"ok   {name}")
             except Failure as e:
                 failed += 1
                 print(f"FAIL {name}: {e}")
     return 1 if failed else 0
+
+
+def main():
+    return run_cases(CASES, "cli_tests.py")
 
 
 if __name__ == "__main__":

@@ -19,7 +19,6 @@ import resource
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -245,22 +244,5 @@ def case_time_limit(tmp):
 CASES = dict(full_disk=case_full_disk, collisions=case_collisions, signals=case_signals, time_limit=case_time_limit)
 
 
-def main():
-    if len(sys.argv) != 3 or sys.argv[2] not in list(CASES) + ["all"]:
-        print(f"usage: output_tests.py WEFM_BINARY CASE  (CASE: all, {', '.join(CASES)})")
-        return 2
-    cli_tests.WEFM = os.path.abspath(sys.argv[1])
-    failed = 0
-    for name in (CASES if sys.argv[2] == "all" else [sys.argv[2]]):
-        with tempfile.TemporaryDirectory(prefix=f"wefm_out_{name}_") as tmp:
-            try:
-                CASES[name](tmp)
-                print(f"ok   {name}")
-            except Failure as e:
-                failed += 1
-                print(f"FAIL {name}: {e}")
-    return 1 if failed else 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cli_tests.run_cases(CASES, "output_tests.py"))

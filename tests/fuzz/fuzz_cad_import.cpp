@@ -6,40 +6,18 @@
 // Properties: a failure has a message; a model that imports has faces whose triangles, edge chains,
 // loops and outer loop index what is there; it survives the byte form the import child hands back
 // (cad_model_wire) unchanged; and those decoded bytes, cut short, are refused, not read past.
-#include <unistd.h>
-
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
 #include "cad_model.hpp"
 #include "cad_model_wire.hpp"
-#include "fuzz_input.hpp"
+#include "fuzz_files.hpp"
 
 using wefm_fuzz::violated;
 
 namespace {
 
-// Never destroyed: the atexit cleanup runs after static destructors registered later.
-const std::string& work_dir() {
-  static const std::string& dir = *new std::string([] {
-    const char* t = std::getenv("TMPDIR");
-    std::string tmpl = std::string(t && *t ? t : "/tmp") + "/wefm_fuzz_cad_XXXXXX";
-    std::vector<char> buf(tmpl.begin(), tmpl.end());
-    buf.push_back('\0');
-    if (!mkdtemp(buf.data())) violated("mkdtemp", tmpl.c_str());
-    return std::string(buf.data());
-  }());
-  return dir;
-}
-
 const char* const kExtensions[] = {".step", ".iges", ".brep"};
-
-void cleanup() {
-  for (const char* ext : kExtensions) std::remove((work_dir() + "/model" + ext).c_str());
-  std::remove(work_dir().c_str());
-}
 
 void check_face(const wefm_cad::CadFace& f) {
   if (!f.error.empty()) return;  // not imported: only its reason is used
@@ -69,18 +47,12 @@ void check_wire(const wefm_cad::CadModel& m) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const bool registered = (std::atexit(cleanup), true);
-  (void)registered;
   if (size < 1) return 0;
   // The raw bytes as the child's answer: any garbage must be refused or decoded, never read past.
   wefm_cad::CadModel garbage;
   (void)wefm_cad::decode_cad_model(std::string_view(reinterpret_cast<const char*>(data), size), garbage);
 
-  const std::string path = work_dir() + "/model" + kExtensions[data[0] % 3];
-  FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) violated("fopen", path.c_str());
-  if (size > 1 && std::fwrite(data + 1, 1, size - 1, f) != size - 1) violated("fwrite", path.c_str());
-  std::fclose(f);
+  const std::string path = wefm_fuzz::write_temp_file(std::string("model") + kExtensions[data[0] % 3], data + 1, size - 1);
   wefm_cad::TessellationSettings coarse;  // few triangles: the time goes to reading, not meshing
   coarse.relative_deflection = 0.05;
   coarse.angular_deflection = 1.0;

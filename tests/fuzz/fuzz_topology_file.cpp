@@ -3,37 +3,15 @@
 // 3 or 4 and a failure names the file; a file that parses has consistent arrays (loops name edges
 // that exist, the outer loop is a loop or -1); writing it and reading it back gives the same
 // topology (ids, chains, modes, loops, outer loop).
-#include <unistd.h>
-
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
-#include "fuzz_input.hpp"
+#include "fuzz_files.hpp"
 #include "topology_file.hpp"
 
 using wefm_fuzz::violated;
 
 namespace {
-
-// Never destroyed: the atexit cleanup runs after static destructors registered later.
-const std::string& work_dir() {
-  static const std::string& dir = *new std::string([] {
-    const char* t = std::getenv("TMPDIR");
-    std::string tmpl = std::string(t && *t ? t : "/tmp") + "/wefm_fuzz_topology_XXXXXX";
-    std::vector<char> buf(tmpl.begin(), tmpl.end());
-    buf.push_back('\0');
-    if (!mkdtemp(buf.data())) violated("mkdtemp", tmpl.c_str());
-    return std::string(buf.data());
-  }());
-  return dir;
-}
-
-void cleanup() {
-  for (const char* name : {"/in.json", "/out.json"}) std::remove((work_dir() + name).c_str());
-  std::remove(work_dir().c_str());
-}
 
 void check_consistent(const wefm_cli::TopologyFile& t) {
   const size_t n = t.ids.size();
@@ -55,21 +33,11 @@ void check_consistent(const wefm_cli::TopologyFile& t) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  static const bool registered = (std::atexit(cleanup), true);
-  (void)registered;
-  const std::string in = work_dir() + "/in.json", out = work_dir() + "/out.json";
-  FILE* f = std::fopen(in.c_str(), "wb");
-  if (!f) violated("fopen", in.c_str());
-  if (size && std::fwrite(data, 1, size, f) != size) violated("fwrite", in.c_str());
-  std::fclose(f);
+  const std::string in = wefm_fuzz::write_temp_file("in.json", data, size);
+  const std::string out = wefm_fuzz::temp_path("out.json");
   wefm_cli::TopologyFile topo;
   std::string error;
-  const int code = wefm_cli::read_topology_file(in, topo, error);
-  if (code != 0 && code != 3 && code != 4) violated("read_topology_file", "exit code outside 0, 3, 4");
-  if (code != 0) {
-    if (error.find(in) == std::string::npos) violated("read_topology_file", "a failure that does not name the file");
-    return 0;
-  }
+  if (!wefm_fuzz::cli_read_ok(wefm_cli::read_topology_file(in, topo, error), error, in, "read_topology_file")) return 0;
   check_consistent(topo);
   if (wefm_cli::write_topology_file(out, topo, error) != 0) violated("write_topology_file", error.c_str());
   wefm_cli::TopologyFile back;
