@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 namespace wefm_cad {
 
 namespace {
 
-// The smallest local size, as a fraction of h: a face narrower than h / 32 keeps slivers (a needle
-// face cannot ask for millions of elements along its long edges).
-constexpr double kNarrowestFraction = 32;
+// The smallest local size a narrow face gets, as a fraction of h: a face narrower than h / 8 keeps
+// slivers (a needle face cannot ask for millions of elements along its long edges).
+constexpr double kNarrowestFraction = 8;
+// The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
+constexpr double kSmallestRadiusFraction = 8;
 
 double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -132,6 +136,47 @@ double chain_length(const CadFace& f, const CadEdge& e) {
   return length;
 }
 
+// The face's smaller radius of curvature, from its facets: across each facet edge inside the face,
+// the distance between the two facets' centroids over the angle between their normals. A low
+// quantile, not the minimum, so one skewed facet does not decide it; infinite on a flat face.
+double curvature_radius(const CadFace& f) {
+  const size_t n = f.triangles.size() / 3;
+  std::vector<std::array<double, 3>> normal(n), centre(n);
+  for (size_t t = 0; t < n; ++t) {
+    const double* p[3];
+    for (int c = 0; c < 3; ++c) p[c] = &f.xyz[3 * static_cast<size_t>(f.triangles[3 * t + static_cast<size_t>(c)])];
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    std::array<double, 3> m{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    for (int c = 0; c < 3; ++c) {
+      normal[t][static_cast<size_t>(c)] = len > 0 ? m[static_cast<size_t>(c)] / len : 0;
+      centre[t][static_cast<size_t>(c)] = (p[0][c] + p[1][c] + p[2][c]) / 3;
+    }
+  }
+  std::unordered_map<unsigned long long, size_t> first;  // directed edge -> its triangle
+  std::vector<double> radii;
+  for (size_t t = 0; t < n; ++t)
+    for (int c = 0; c < 3; ++c) {
+      const auto a = static_cast<unsigned long long>(static_cast<uint32_t>(f.triangles[3 * t + static_cast<size_t>(c)]));
+      const auto b = static_cast<unsigned long long>(static_cast<uint32_t>(f.triangles[3 * t + static_cast<size_t>((c + 1) % 3)]));
+      const auto it = first.find(b << 32 | a);
+      if (it == first.end()) {
+        first.emplace(a << 32 | b, t);
+        continue;
+      }
+      const auto &n0 = normal[it->second], &n1 = normal[t];
+      const double cosine = std::clamp(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2], -1.0, 1.0);
+      const double angle = std::acos(cosine);
+      if (!(angle > 1e-3)) continue;
+      radii.push_back(distance(centre[it->second].data(), centre[t].data()) / angle);
+    }
+  if (radii.size() < 4) return std::numeric_limits<double>::infinity();
+  const size_t q = radii.size() / 10;
+  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(q), radii.end());
+  return radii[q];
+}
+
 std::vector<double> local_face_sizes(const CadModel& model, double h) {
   std::vector<double> sizes(model.faces.size(), h);
   for (size_t k = 0; k < model.faces.size(); ++k) {
@@ -149,7 +194,12 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
     for (const auto& loop : f.loops)
       for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
-    if (perimeter > 0) sizes[k] = std::clamp(2 * area / perimeter, h / kNarrowestFraction, h);
+    // A curved face gets at least about six segments around a full turn (a hexagon's side is its
+    // radius): coarser, the chords of a thin tube or a small hole fold onto each other.
+    // Curvature may ask for smaller elements than narrowness: a small hole needs its six segments
+    // around whatever its length, while a long narrow strip cannot ask for millions along it.
+    const double width = perimeter > 0 ? std::max(2 * area / perimeter, h / kNarrowestFraction) : h;
+    sizes[k] = std::clamp(std::min(width, curvature_radius(f)), h / kSmallestRadiusFraction, h);
   }
   return sizes;
 }
