@@ -177,20 +177,25 @@ double curvature_radius(const CadFace& f) {
   return radii[q];
 }
 
+double face_area(const CadFace& f) {
+  double area = 0;
+  for (size_t t = 0; t + 2 < f.triangles.size(); t += 3) {
+    const double* a = &f.xyz[3 * static_cast<size_t>(f.triangles[t])];
+    const double* b = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 1])];
+    const double* c = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+    area += 0.5 * std::sqrt(x * x + y * y + z * z);
+  }
+  return area;
+}
+
 std::vector<double> local_face_sizes(const CadModel& model, double h) {
   std::vector<double> sizes(model.faces.size(), h);
   for (size_t k = 0; k < model.faces.size(); ++k) {
     const CadFace& f = model.faces[k];
     if (!f.error.empty()) continue;
-    double area = 0;
-    for (size_t t = 0; t + 2 < f.triangles.size(); t += 3) {
-      const double* a = &f.xyz[3 * static_cast<size_t>(f.triangles[t])];
-      const double* b = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 1])];
-      const double* c = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 2])];
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-      area += 0.5 * std::sqrt(x * x + y * y + z * z);
-    }
+    const double area = face_area(f);
     double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
     for (const auto& loop : f.loops)
       for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);

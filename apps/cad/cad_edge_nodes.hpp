@@ -23,6 +23,9 @@ struct EdgeNodes {
 // local size at all (Ball.brep).
 std::vector<double> local_face_sizes(const CadModel& model, double h);
 
+// The area of a face's tessellation.
+double face_area(const CadFace& face);
+
 // Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
 // empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments of

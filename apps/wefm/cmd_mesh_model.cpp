@@ -40,6 +40,13 @@ namespace {
 #ifdef WEFM_CLI_HAVE_OCCT
 
 using Json = nlohmann::ordered_json;
+
+// Triangles a whole-model mesh may need before it is refused unless the caller says otherwise, and
+// about what one costs in the tool's peak memory (face meshes, the welded mesh, the output): 335 MB
+// for the 1.0M triangles of gmsh_rod.brep at 1/1000 of its diagonal, rounded up.
+constexpr long long kDefaultMaxElements = 50'000'000;
+constexpr double kBytesPerTriangle = 400;
+
 std::vector<OptionSpec> mesh_model_specs() {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const wefm_cad::TessellationSettings d;
@@ -59,6 +66,8 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
+      {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "
+                               "and cap each face's refinement at N; 0 = no limit", std::to_string(kDefaultMaxElements), false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
       {"quiet", 'q', "", "no per-face progress lines", "", false},
   };
@@ -190,6 +199,17 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   }
 }
 
+
+// About how many triangles the faces need at their sizes: each face's area over an equilateral
+// triangle's of side its size.
+double estimated_triangles(const wefm_cad::CadModel& model, const std::vector<double>& face_sizes) {
+  double total = 0;
+  for (size_t k = 0; k < model.faces.size(); ++k) {
+    total += wefm_cad::face_area(model.faces[k]) / (0.433 * face_sizes[k] * face_sizes[k]);
+  }
+  return total;
+}
+
 // A face whose domain boundary, discretised at its edges' nodes, crosses itself (chords of a coarse
 // edge cutting across a narrow part of the domain) is meshed again with finer nodes on its edges:
 // its size halves, every edge whose nodes change is discretised again, and every face using such
@@ -264,6 +284,11 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "wefm mesh-model: -j: expected a thread count >= 1\n");
     return kExitUsage;
   }
+  long long max_elements = kDefaultMaxElements;
+  if (args.has("max-elements") && (!parse_int(args.value("max-elements"), max_elements) || max_elements < 0)) {
+    std::fprintf(stderr, "wefm mesh-model: --max-elements: expected a count >= 0\n");
+    return kExitUsage;
+  }
   if (args.has("smoothing") && (!parse_int(args.value("smoothing"), smoothing) || smoothing < 0)) {
     std::fprintf(stderr, "wefm mesh-model: --smoothing: expected a count >= 0\n");
     return kExitUsage;
@@ -311,12 +336,25 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     face_sizes = wefm_cad::local_face_sizes(model, size);
     gradation = 0.3;
   }
+  // Before any edge is discretised: a size far below the model's (a typo, a unit mix-up) would
+  // otherwise grow until memory runs out.
+  const double estimate = estimated_triangles(model, face_sizes);
+  const double estimate_mb = estimate * kBytesPerTriangle / 1e6;
+  if ((max_elements > 0 && estimate > static_cast<double>(max_elements)) ||
+      (settings.options.memory_limit_mb > 0 && estimate_mb > settings.options.memory_limit_mb)) {
+    std::fprintf(stderr,
+                 "wefm: %s at size %g would need about %.3g triangles (about %.0f MB), above --max-elements %lld or "
+                 "--memory-limit %g MB: refused before meshing (a larger --size, or raise the limits)\n",
+                 model_path.c_str(), size, estimate, estimate_mb, max_elements, settings.options.memory_limit_mb);
+    return kExitSolver;
+  }
   auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
   const double time_edges = since(t_edges);
 
   wefm_mesh_options free_options, tf_options;
   wefm_mesh_options_init(&free_options, sizeof free_options);
   free_options.size = size;
+  free_options.max_elements = max_elements;
   if (smoothing >= 0) free_options.smoothing_iterations = static_cast<int>(smoothing);
   tf_options = free_options;
   tf_options.type = WEFM_MESH_TRANSFINITE;

@@ -61,6 +61,17 @@ def check(wefm, path, clean, tmp):
           f"{len(failed)} failed faces, conformity {c['unexplained_open_edges']}/{c['unexplained_non_manifold_edges']} unexplained")
 
 
+def check_refused_size(wefm, folder, tmp):
+    """A size far below the model's is refused before any meshing, with a message naming the estimate."""
+    msh = os.path.join(tmp, "tiny.msh")
+    p = subprocess.run([wefm, "mesh-model", os.path.join(folder, "gmsh_cube_filet.stp"), "--size", "1e-9", "-o", msh, "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 5 and "refused before meshing" in p.stderr and not os.path.exists(msh), (p.returncode, p.stderr)
+    p = subprocess.run([wefm, "mesh-model", os.path.join(folder, "gmsh_cube_filet.stp"), "--size-ratio", "0.025",
+                        "--max-elements", "100", "-o", msh, "-q"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 5 and "--max-elements 100" in p.stderr, (p.returncode, p.stderr)
+
+
 def main():
     wefm, folder = sys.argv[1:3]
     missing = [m for m, _ in MODELS if not os.path.exists(os.path.join(folder, m))]
@@ -70,6 +81,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for m, clean in MODELS:
             check(wefm, os.path.join(folder, m), clean, tmp)
+        check_refused_size(wefm, folder, tmp)
     return 0
 
 
