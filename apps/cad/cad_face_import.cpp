@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <map>
 #include <set>
 #include <unordered_map>
 
@@ -29,6 +30,7 @@
 #include <TopoDS_Iterator.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
+#include <gp_Vec.hxx>
 
 namespace wefm_cad {
 
@@ -80,6 +82,10 @@ std::vector<TopoDS_Edge> wire_edges(const TopoDS_Wire& wire, const TopoDS_Face& 
   for (TopExp_Explorer ex(wire, TopAbs_EDGE); ex.More(); ex.Next()) stored.push_back(TopoDS::Edge(ex.Current()));
   return ordered.size() == stored.size() ? ordered : stored;
 }
+
+// Twice a triangle's area over its longest edge squared, below which it is a sliver folded flat (its
+// smallest angle under about 0.06 degrees).
+constexpr double kFoldedArea = 1e-3;
 
 class Importer {
  public:
@@ -190,6 +196,38 @@ class Importer {
     return found;
   }
 
+  // BRepMesh can leave, next to a pole or a seam, a sliver folded onto an edge two others already
+  // share (an edge of three triangles, which the library refuses). Such a sliver carries next to
+  // nothing of the surface: it is dropped. A triangle on an edge of two, or one with a real angle,
+  // is never dropped here.
+  void drop_slivers_on_overused_edges() {
+    auto& t = out_.triangles;
+    std::map<std::pair<int32_t, int32_t>, int> uses;
+    for (size_t k = 0; k < t.size(); ++k) {
+      const size_t base = k - k % 3;
+      ++uses[std::minmax(t[k], t[base + (k % 3 + 1) % 3])];
+    }
+    auto overused = [&](size_t tri) {
+      for (size_t c = 0; c < 3; ++c)
+        if (uses[std::minmax(t[3 * tri + c], t[3 * tri + (c + 1) % 3])] > 2) return true;
+      return false;
+    };
+    std::vector<int32_t> kept;
+    for (size_t tri = 0; 3 * tri < t.size(); ++tri) {
+      const double* p[3];
+      for (size_t c = 0; c < 3; ++c) p[c] = &out_.xyz[3 * static_cast<size_t>(t[3 * tri + c])];
+      const gp_Vec u(p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]), v(p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]);
+      const double longest = std::max({u.SquareMagnitude(), v.SquareMagnitude(), (v - u).SquareMagnitude()});
+      if (overused(tri) && u.Crossed(v).Magnitude() <= kFoldedArea * longest) {
+        for (size_t c = 0; c < 3; ++c) --uses[std::minmax(t[3 * tri + c], t[3 * tri + (c + 1) % 3])];
+        ++out_.dropped_triangles;
+        continue;
+      }
+      kept.insert(kept.end(), t.begin() + static_cast<std::ptrdiff_t>(3 * tri), t.begin() + static_cast<std::ptrdiff_t>(3 * tri + 3));
+    }
+    t = std::move(kept);
+  }
+
   void build_mesh(UnionFind& uf) {
     const bool flip = face_.Orientation() == TopAbs_REVERSED;
     std::vector<int32_t> index(points_.size(), -1);
@@ -222,6 +260,7 @@ class Importer {
       }
       out_.triangles.insert(out_.triangles.end(), key.begin(), key.end());
     }
+    drop_slivers_on_overused_edges();
     if (out_.triangles.empty()) {
       fail("no triangle left after merging seam sides and degenerate points");
       return;
