@@ -144,8 +144,38 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
 
 ConformityCounts ModelMesh::conformity() const {
   std::unordered_map<uint64_t, int> uses;
+  // Per edge, whether some face uses it other than twice (triangles are added face by face, so a
+  // face's uses of an edge are counted in a row).
+  std::unordered_map<uint64_t, std::pair<int, int>> run;  // edge -> (face of the current run, its count)
+  std::unordered_map<uint64_t, char> odd_in_a_face;
   for (size_t t = 0; t + 2 < tris_.size(); t += 3)
-    for (int c = 0; c < 3; ++c) ++uses[pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])];
+    for (int c = 0; c < 3; ++c) {
+      const uint64_t key = pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)]);
+      ++uses[key];
+      auto [it, fresh] = run.emplace(key, std::make_pair(tri_face_[t / 3], 0));
+      if (!fresh && it->second.first != tri_face_[t / 3]) {
+        if (it->second.second != 2) odd_in_a_face[key] = 1;
+        it->second = {tri_face_[t / 3], 0};
+      }
+      ++it->second.second;
+    }
+  for (const auto& [key, r] : run)
+    if (r.second != 2) odd_in_a_face[key] = 1;
+  // Faces that lie on each other are meshed alike: their triangles at the edge are the same two
+  // node triples. Triangles that differ are faces folded onto each other, a defect.
+  std::unordered_map<uint64_t, std::vector<std::array<int32_t, 3>>> around;
+  for (size_t t = 0; t + 2 < tris_.size(); t += 3)
+    for (int c = 0; c < 3; ++c) {
+      const uint64_t key = pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)]);
+      if (uses[key] <= 2 || odd_in_a_face.count(key) || expected_uses_.count(key)) continue;
+      std::array<int32_t, 3> corners{tris_[t], tris_[t + 1], tris_[t + 2]};
+      std::sort(corners.begin(), corners.end());
+      around[key].push_back(corners);
+    }
+  for (auto& [key, triples] : around) {
+    std::sort(triples.begin(), triples.end());
+    if (std::unique(triples.begin(), triples.end()) - triples.begin() != 2) odd_in_a_face[key] = 1;
+  }
   ConformityCounts out;
   out.edges = static_cast<int64_t>(uses.size());
   std::unordered_map<uint64_t, char> defect_edges;
@@ -153,7 +183,9 @@ ConformityCounts ModelMesh::conformity() const {
     out.open_edges += n == 1;
     out.non_manifold_edges += n > 2;
     const auto it = expected_uses_.find(key);
-    const int want = it == expected_uses_.end() ? 2 : it->second;
+    // Off the model edges: twice, or twice by each of several faces lying on each other (touching
+    // volumes of an assembly whose faces coincide, meshed alike and welded).
+    const int want = it != expected_uses_.end() ? it->second : (odd_in_a_face.count(key) ? 2 : n);
     out.brep_edge_segments += it != expected_uses_.end();
     if (n != want) {
       defect_edges.emplace(key, 1);
