@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "command.hpp"
@@ -69,6 +70,10 @@ int main(int argc, char** argv) {
     return run(argc, argv);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "wefm: out of memory\n");
+  } catch (const std::system_error& e) {
+    // A thread that cannot start (its stack under `ulimit -v`) is exhausted memory, as in the library.
+    const bool exhausted = e.code() == std::errc::not_enough_memory || e.code() == std::errc::resource_unavailable_try_again;
+    std::fprintf(stderr, "wefm: %s: %s\n", exhausted ? "out of memory" : "internal error", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "wefm: internal error: %s\n", e.what());
   } catch (...) {

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <new>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -50,6 +51,14 @@ wefm_status guarded(std::string* err, F&& body) noexcept {
     if (err) *err = m;
     set_thread_error(m);
     return WEFM_ERROR_OUT_OF_MEMORY;
+  } catch (const std::system_error& e) {
+    // A thread that cannot be started for want of memory (its stack under an address-space limit)
+    // or of thread slots is resource exhaustion too, not a bug.
+    const bool exhausted = e.code() == std::errc::not_enough_memory || e.code() == std::errc::resource_unavailable_try_again;
+    const std::string m = std::string(exhausted ? "out of memory: " : "internal error: ") + e.what();
+    if (err) *err = m;
+    set_thread_error(m);
+    return exhausted ? WEFM_ERROR_OUT_OF_MEMORY : WEFM_ERROR_INTERNAL;
   } catch (const std::exception& e) {
     const std::string m = std::string("internal error: ") + e.what();
     if (err) *err = m;

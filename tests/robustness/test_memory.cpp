@@ -3,8 +3,11 @@
 // WEFM_ERROR_OUT_OF_MEMORY (or another clean status) and leave the face usable once memory is back.
 #include <doctest/doctest.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -124,4 +127,47 @@ TEST_CASE("memory_limit_mb refuses a solve estimated above it before factorising
     REQUIRE(wefm_face_set_options(f, &o) == WEFM_OK);
     CHECK(wefm_face_solve(f) == WEFM_OK);
   }
+}
+
+TEST_CASE("a solve whose threads cannot be started runs on the calling thread, with the same layout") {
+  // A solve of 20,000 uses and more on 2 threads starts threads for its coefficients and its
+  // symbolic analysis. A thread's stack is sized by RLIMIT_STACK as the process started, so in a
+  // child started with 1 GB stacks under a 512 MB address-space cap no thread can start, while
+  // every allocation fits. The child exits with the solve's status, or 120 if the layout differs
+  // from the same solve's once the cap is lifted (layouts do not depend on the thread count).
+  if (std::getenv("WEFM_TEST_THREAD_OOM_CHILD")) {
+    Face f(cap(150));
+    wefm_options o = options();
+    o.threads = 2;
+    if (f.last != WEFM_OK || wefm_face_set_options(f, &o) != WEFM_OK || wefm_face_build(f) != WEFM_OK) std::_Exit(100);
+    wefm_status s;
+    {
+      AddressSpaceCap cap(512ll << 20);
+      if (!cap.ok()) std::_Exit(101);
+      s = wefm_face_solve(f);
+    }
+    std::fprintf(stderr, "child: %s: %s\n", wefm_status_string(s), f.error().c_str());
+    if (s != WEFM_OK) std::_Exit(static_cast<int>(s));
+    const std::vector<double> capped = get_uv(f);
+    if (wefm_face_solve(f) != WEFM_OK) std::_Exit(121);
+    std::_Exit(get_uv(f) == capped ? 0 : 120);
+  }
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    rlimit r{};
+    getrlimit(RLIMIT_STACK, &r);
+    r.rlim_cur = rlim_t(1) << 30;
+    if (r.rlim_max != RLIM_INFINITY && r.rlim_max < r.rlim_cur) r.rlim_max = r.rlim_cur;
+    if (setrlimit(RLIMIT_STACK, &r) != 0) std::_Exit(102);
+    setenv("WEFM_TEST_THREAD_OOM_CHILD", "1", 1);
+    setenv("OPENBLAS_NUM_THREADS", "1", 1);
+    execl("/proc/self/exe", "wefm_memory_test", "-tc=a solve whose threads cannot be started*", static_cast<char*>(nullptr));
+    std::_Exit(103);
+  }
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  REQUIRE(WIFEXITED(status));
+  INFO("child exit code ", WEXITSTATUS(status), " (100-103: set-up failed, 120: another layout)");
+  CHECK(WEXITSTATUS(status) == 0);
 }

@@ -72,7 +72,8 @@
  *              set_progress_callback) returns WEFM_ERROR_INVALID_STATE until wefm_face_solve returns.
  *              A release of the last reference from the callback does not free the face under its
  *              solve: wefm_face_solve frees it as it returns (the caller must not use it after).
- * Exceptions.  None cross this boundary. Memory exhaustion returns WEFM_ERROR_OUT_OF_MEMORY.
+ * Exceptions.  None cross this boundary. Memory exhaustion (also a thread that cannot be started for
+ *              want of memory or thread slots) returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
  *              clears constraints (use ids change with it) and results. Changing constraints or
  *              edge modes clears results. Options apply to the next solve: the result stays
