@@ -11,64 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "fuzz_input.hpp"
+#include "fuzz_faces.hpp"
 
+using wefm_fuzz::check;
 using wefm_fuzz::Input;
+using wefm_fuzz::make_mesh;
+using wefm_fuzz::Mesh;
 using wefm_fuzz::violated;
 
 namespace {
-
-struct Mesh {
-  std::vector<double> xyz;
-  std::vector<int32_t> tri;
-  int32_t nv() const { return static_cast<int32_t>(xyz.size() / 3); }
-  int32_t nt() const { return static_cast<int32_t>(tri.size() / 3); }
-};
-
-void check(wefm_status s, wefm_face* f) {
-  if (std::strcmp(wefm_status_string(s), "WEFM_ERROR_UNKNOWN") == 0) violated("undocumented status", std::to_string(static_cast<int>(s)).c_str());
-  if (s == WEFM_ERROR_INTERNAL) violated("WEFM_ERROR_INTERNAL", f ? wefm_face_last_error(f) : wefm_last_error());
-}
-
-// A (w x h)-cell grid on a bent sheet, then a few mutations of coordinates and indices.
-Mesh make_mesh(Input& in) {
-  Mesh m;
-  const uint8_t mode = in.u8();
-  if (mode % 4 == 0) {  // raw: anything at all
-    const int nv = 3 + in.u8() % 24, nt = 1 + in.u8() % 32;
-    for (int i = 0; i < 3 * nv; ++i) m.xyz.push_back(in.number());
-    for (int i = 0; i < 3 * nt; ++i) m.tri.push_back(in.index(0, nv));
-    return m;
-  }
-  const int w = 1 + in.u8() % 7, h = 1 + in.u8() % 7;
-  const double bend = in.u8() / 64.0;
-  const bool closed = mode % 4 == 3 && w >= 3;  // wrap around: an annulus (or a tube)
-  const int cols = closed ? w : w + 1;
-  for (int j = 0; j <= h; ++j)
-    for (int i = 0; i < cols; ++i) {
-      const double a = 2 * 3.141592653589793 * i / w;
-      if (closed) m.xyz.insert(m.xyz.end(), {std::cos(a), std::sin(a), 0.5 * j});
-      else m.xyz.insert(m.xyz.end(), {static_cast<double>(i), static_cast<double>(j), bend * std::sin(i * 0.7) * j});
-    }
-  auto id = [&](int i, int j) { return static_cast<int32_t>(j * cols + (i % cols)); };
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      const bool diag = (in.u8() & 1) != 0;
-      if (diag) {
-        m.tri.insert(m.tri.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-      } else {
-        m.tri.insert(m.tri.end(), {id(i, j), id(i + 1, j), id(i, j + 1), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-      }
-    }
-  const int mutations = in.u8() % 4;
-  for (int k = 0; k < mutations; ++k) {
-    const uint8_t what = in.u8();
-    if (what % 3 == 0 && !m.xyz.empty()) m.xyz[in.u8() % m.xyz.size()] = in.number();
-    else if (what % 3 == 1 && !m.tri.empty()) m.tri[in.u8() % m.tri.size()] = in.index(0, m.nv());
-    else if (!m.tri.empty()) m.tri.resize(m.tri.size() - 3);  // drop the last triangle
-  }
-  return m;
-}
 
 void set_mesh(wefm_face* f, Input& in) {
   Mesh m = make_mesh(in);
@@ -88,6 +39,8 @@ void set_mesh(wefm_face* f, Input& in) {
     check(s, nullptr);
     if ((s == WEFM_OK) != (mh != nullptr)) violated("wefm_mesh_create", "handle/status mismatch");
     if (mh) {
+      check(wefm_mesh_retain(mh), nullptr);  // a second reference, dropped at once: the mesh stays
+      wefm_mesh_release(mh);
       wefm_mesh_info info;
       wefm_mesh_info_init(&info);
       check(wefm_mesh_get_info(mh, &info), nullptr);
@@ -164,17 +117,60 @@ void query(wefm_face* f, Fn fn) {
 
 struct Cancel {
   int calls = 0, after = -1;
+  wefm_face* face = nullptr;
+  int reenter = 0;  // which call the callback makes into its own face (0: none)
 };
+
+// A call from inside the progress callback into the solving face: changes must be refused with
+// WEFM_ERROR_INVALID_STATE (wefm.h, "Re-entrancy"), reads and a balanced retain/release accepted.
+void reenter(Cancel& c) {
+  wefm_face* f = c.face;
+  wefm_status s = WEFM_OK;
+  bool change = true;
+  switch (c.reenter % 8) {
+    case 1: s = wefm_face_add_pin(f, 0, 1, 1, nullptr); break;
+    case 2: s = wefm_face_clear_topology(f); break;
+    case 3: s = wefm_face_solve(f); break;
+    case 4: {
+      const double xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+      const int32_t tri[3] = {0, 1, 2};
+      s = wefm_face_set_mesh(f, 3, xyz, 1, tri);
+      break;
+    }
+    case 5: s = wefm_face_clear_constraints(f); break;
+    case 6: {
+      change = false;
+      int32_t solved = 0;
+      s = wefm_face_retain(f);
+      wefm_face_release(f);
+      if (s == WEFM_OK) s = wefm_face_has_result(f, &solved);
+      break;
+    }
+    default: {
+      change = false;
+      wefm_options o;
+      wefm_options_init(&o);
+      s = wefm_face_get_options(f, &o);
+      break;
+    }
+  }
+  if (change && s != WEFM_ERROR_INVALID_STATE) violated("a change from inside the progress callback was not refused", wefm_status_string(s));
+  if (!change && s != WEFM_OK) violated("a read from inside the progress callback failed", wefm_face_last_error(f));
+}
+
 int progress(void* user, double fraction, const char* stage) {
   auto* c = static_cast<Cancel*>(user);
   if (!(fraction >= 0 && fraction <= 1)) violated("progress fraction outside [0,1]", stage);
   if (!stage) violated("progress", "NULL stage");
+  if (c->reenter) reenter(*c);
   return c->after >= 0 && ++c->calls >= c->after;
 }
 
 void solve(wefm_face* f, Input& in) {
   Cancel c;
   c.after = in.u8() % 4 == 0 ? in.u8() % 12 : -1;
+  c.face = f;
+  c.reenter = in.u8() % 4 == 0 ? 1 + in.u8() % 7 : 0;
   check(wefm_face_set_progress_callback(f, progress, &c), f);
   int32_t before = 0;
   wefm_face_has_result(f, &before);
@@ -225,6 +221,8 @@ void queries(wefm_face* f, Input& in) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Input in(data, size);
+  if (wefm_version_number() != WEFM_VERSION_NUMBER || !wefm_version()) violated("version", "the library and its header differ");
+  (void)wefm_has_suitesparse();  // a property of the build: called so that every export is reached
   wefm_face* f = nullptr;
   if (wefm_face_create(&f) != WEFM_OK) violated("wefm_face_create", wefm_last_error());
   set_mesh(f, in);

@@ -1,0 +1,180 @@
+// libFuzzer target: meshing a solved face's domain (wefm_face_mesh_domain) with fuzzed mesh
+// options and caller edge nodes, then every wefm_domain_mesh_* call on the result. Sizes are kept
+// to a few hundred elements (an element size of at least 1/10 of the face's extent, at most 2
+// smoothing passes unless fuzzed) so one input runs in milliseconds; NaN, infinite, zero,
+// negative and tiny sizes are still tried (refused).
+// Invariants checked (abort = finding): no crash, sanitizer report or WEFM_ERROR_INTERNAL; on
+// success a mesh handle whose node positions are finite, whose elements index its nodes, whose
+// report counts match the arrays, and which writes as OBJ; on failure no handle.
+#include <wefm/wefm.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "fuzz_faces.hpp"
+
+using wefm_fuzz::check;
+using wefm_fuzz::Input;
+using wefm_fuzz::violated;
+
+namespace {
+
+// Largest extent of the face's vertices (0 without a mesh).
+double extent(wefm_face* f, Input& in, std::vector<double>& xyz_of_edge, int32_t& edge) {
+  int64_t edges = 0;
+  edge = -1;
+  if (wefm_face_edge_count(f, &edges) != WEFM_OK || edges == 0) return 0;
+  edge = static_cast<int32_t>(in.u8() % edges);
+  int64_t n = 0;
+  check(wefm_face_get_edge(f, edge, nullptr, 0, &n), f);
+  std::vector<int32_t> chain(static_cast<size_t>(n));
+  check(wefm_face_get_edge(f, edge, chain.data(), n, &n), f);
+  // The edge's own vertices (as 3D points of its uses), and the extent of the UV domain.
+  int64_t nu = 0;
+  check(wefm_face_get_uv(f, nullptr, 0, &nu), f);
+  std::vector<double> uv(static_cast<size_t>(nu));
+  check(wefm_face_get_uv(f, uv.data(), nu, &nu), f);
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (size_t i = 0; i < uv.size(); ++i) lo[i % 2] = std::fmin(lo[i % 2], uv[i]), hi[i % 2] = std::fmax(hi[i % 2], uv[i]);
+  std::vector<int32_t> uses(static_cast<size_t>(nu / 2));
+  int64_t k = 0;
+  check(wefm_face_get_use_vertices(f, uses.data(), static_cast<int64_t>(uses.size()), &k), f);
+  xyz_of_edge.clear();
+  for (int32_t v : chain) {
+    // The vertex's position through the mapping of one of its uses.
+    for (size_t u = 0; u < uses.size(); ++u)
+      if (uses[u] == v) {
+        double p[3];
+        check(wefm_face_map_uv_to_3d(f, 1, &uv[2 * u], p, nullptr, nullptr), f);
+        xyz_of_edge.insert(xyz_of_edge.end(), {p[0], p[1], p[2]});
+        break;
+      }
+  }
+  return std::fmax(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+// Caller nodes along an edge: its own vertices, some points between them, some moved off it.
+void edge_nodes(wefm_face* f, Input& in, int32_t edge, const std::vector<double>& chain) {
+  if (edge < 0 || chain.size() < 6) return;
+  std::vector<double> nodes;
+  const size_t nv = chain.size() / 3;
+  for (size_t i = 0; i + 1 < nv; ++i) {
+    const int extra = in.u8() % 4;
+    for (int e = 0; e <= extra; ++e) {
+      const double t = static_cast<double>(e) / (extra + 1);
+      for (int k = 0; k < 3; ++k) nodes.push_back((1 - t) * chain[3 * i + static_cast<size_t>(k)] + t * chain[3 * (i + 1) + static_cast<size_t>(k)]);
+    }
+  }
+  for (int k = 0; k < 3; ++k) nodes.push_back(chain[3 * (nv - 1) + static_cast<size_t>(k)]);
+  const int mutations = in.u8() % 3;
+  for (int m = 0; m < mutations; ++m) nodes[in.u8() % nodes.size()] += in.u8() % 2 ? in.number() : 1e-9;
+  if (in.u8() % 8 == 0) nodes.resize(in.u8() % 2 ? 3 : 0);  // too few nodes
+  const int64_t n = static_cast<int64_t>(nodes.size() / 3);
+  check(wefm_face_set_edge_nodes(f, in.u8() % 16 == 0 ? in.index(-1, 8) : edge, n, nodes.empty() ? chain.data() : nodes.data()), f);
+}
+
+wefm_mesh_options mesh_options(Input& in, double span) {
+  wefm_mesh_options o;
+  wefm_mesh_options_init(&o);
+  o.type = in.u8() % 5 == 0 ? WEFM_MESH_TRANSFINITE : WEFM_MESH_FREE;
+  o.smoothing_iterations = 2;
+  const uint8_t how = in.u8();
+  if (how % 16 == 0) {
+    o.size = in.number();  // NaN, inf, 0, negative, tiny, huge: refused or one element
+    if (std::isfinite(o.size) && std::fabs(o.size) < span / 10 && std::fabs(o.size) > 1e-200) o.size = span / 10;
+  } else {
+    o.size = span * (0.1 + (how % 64) / 32.0);
+  }
+  const int n = in.u8() % 6;
+  for (int k = 0; k < n; ++k) {
+    switch (in.u8() % 8) {
+      case 0: o.corners[in.u8() % 4] = in.index(-1, 40); break;
+      case 1: o.quads = in.u8() & 1; break;
+      case 2: o.smoothing_iterations = in.index(-1, 4); break;
+      case 3: o.corner_angle_deg = in.u8() % 8 == 0 ? in.number() : in.u8() * (180.0 / 255); break;
+      case 4: o.min_angle_deg = in.u8() % 8 == 0 ? in.number() : in.u8() * (40.0 / 255); break;
+      case 5: o.max_elements = in.index(-1, 400); break;
+      case 6: o.type = in.index(-1, 2); break;
+      default: o.struct_size = in.u8() % 2 ? 0 : sizeof(size_t) + in.u8() % 64; break;  // old/odd callers
+    }
+  }
+  return o;
+}
+
+template <class T, class Get>
+std::vector<T> fetch(Get get) {
+  int64_t n = -1;
+  if (get(static_cast<T*>(nullptr), int64_t(0), &n) != WEFM_OK || n < 0) violated("domain mesh size query", "failed");
+  std::vector<T> v(static_cast<size_t>(n) + 1);
+  if (n > 0) {
+    int64_t c = -1;
+    if (get(v.data(), n - 1, &c) != WEFM_ERROR_BUFFER_TOO_SMALL || c != n) violated("domain mesh size query", "short buffer accepted");
+  }
+  if (get(v.data(), n, &n) != WEFM_OK) violated("domain mesh get", "failed");
+  v.resize(static_cast<size_t>(n));
+  return v;
+}
+
+void inspect(wefm_domain_mesh* dm, Input& in) {
+  if (wefm_domain_mesh_retain(dm) != WEFM_OK) violated("wefm_domain_mesh_retain", wefm_last_error());
+  wefm_domain_mesh_release(dm);
+  const auto uv = fetch<double>([&](double* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_uv(dm, b, c, k); });
+  const auto xyz = fetch<double>([&](double* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_xyz(dm, b, c, k); });
+  const auto el = fetch<int32_t>([&](int32_t* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_elements(dm, b, c, k); });
+  const int64_t nodes = static_cast<int64_t>(uv.size() / 2);
+  if (static_cast<int64_t>(xyz.size()) != 3 * nodes) violated("domain mesh", "uv and xyz counts differ");
+  for (double x : uv)
+    if (!std::isfinite(x)) violated("domain mesh", "a non-finite UV node");
+  for (double x : xyz)
+    if (!std::isfinite(x)) violated("domain mesh", "a non-finite 3D node");
+  for (int32_t e : el)
+    if (e < 0 || e >= nodes) violated("domain mesh", "an element names a node that does not exist");
+  wefm_mesh_report r;
+  wefm_mesh_report_init(&r);
+  if (in.u8() % 8 == 0) r.struct_size = in.u8() % 2 ? 0 : sizeof(size_t) + in.u8() % 64;
+  const wefm_status s = wefm_domain_mesh_get_report(dm, &r);
+  check(s, nullptr);
+  if (s == WEFM_OK && r.struct_size == sizeof r) {
+    if (r.nodes != nodes || (r.nodes_per_element != 3 && r.nodes_per_element != 4) || r.elements * r.nodes_per_element != static_cast<int64_t>(el.size()))
+      violated("domain mesh report", "counts differ from the arrays");
+  }
+  // Written to a private temporary folder, then removed.
+  char dir[] = "/tmp/wefm_fuzz_domain_mesh_XXXXXX";
+  if (!mkdtemp(dir)) return;
+  const std::string path = std::string(dir) + "/mesh.obj";
+  check(wefm_domain_mesh_write_obj(dm, path.c_str()), nullptr);
+  check(wefm_domain_mesh_write_obj(dm, dir), nullptr);  // a folder: WEFM_ERROR_IO
+  std::remove(path.c_str());
+  rmdir(dir);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  Input in(data, size);
+  wefm_face* f = wefm_fuzz::solved_face(in);
+  std::vector<double> chain;
+  int32_t edge = -1;
+  int32_t solved = 0;
+  check(wefm_face_has_result(f, &solved), f);
+  const double span = solved ? extent(f, in, chain, edge) : 1.0;
+  for (int round = 0; round < 3 && !in.empty(); ++round) {
+    const uint8_t op = in.u8() % 4;
+    if (op == 0) edge_nodes(f, in, edge, chain);
+    if (op == 1) check(wefm_face_clear_edge_nodes(f), f);
+    const wefm_mesh_options o = mesh_options(in, span > 0 ? span : 1.0);
+    wefm_domain_mesh* dm = reinterpret_cast<wefm_domain_mesh*>(&edge);  // must be reset to NULL on failure
+    const wefm_status s = wefm_face_mesh_domain(f, &o, &dm);
+    check(s, f);
+    if ((s == WEFM_OK) != (dm != nullptr)) violated("wefm_face_mesh_domain", "handle/status mismatch");
+    if (dm) {
+      inspect(dm, in);
+      wefm_domain_mesh_release(dm);
+    }
+  }
+  wefm_face_release(f);
+  return 0;
+}
