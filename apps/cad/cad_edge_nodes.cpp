@@ -137,39 +137,44 @@ double chain_length(const CadFace& f, const CadEdge& e) {
 }
 
 // The face's smaller radius of curvature, from its facets: across each facet edge inside the face,
-// the distance between the two facets' centroids over the angle between their normals. A low
-// quantile, not the minimum, so one skewed facet does not decide it; infinite on a flat face.
+// the mean distance of the two opposite corners from the edge over the angle between the facets'
+// normals (on a cylinder's facets, its radius). A low quantile, not the minimum, so one skewed facet
+// does not decide it; infinite on a flat face.
 double curvature_radius(const CadFace& f) {
   const size_t n = f.triangles.size() / 3;
-  std::vector<std::array<double, 3>> normal(n), centre(n);
-  for (size_t t = 0; t < n; ++t) {
-    const double* p[3];
-    for (int c = 0; c < 3; ++c) p[c] = &f.xyz[3 * static_cast<size_t>(f.triangles[3 * t + static_cast<size_t>(c)])];
-    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
-    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  auto point = [&](int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; };
+  auto normal = [&](size_t t) {
+    const double *a = point(f.triangles[3 * t]), *b = point(f.triangles[3 * t + 1]), *c = point(f.triangles[3 * t + 2]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
     std::array<double, 3> m{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
     const double len = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    for (int c = 0; c < 3; ++c) {
-      normal[t][static_cast<size_t>(c)] = len > 0 ? m[static_cast<size_t>(c)] / len : 0;
-      centre[t][static_cast<size_t>(c)] = (p[0][c] + p[1][c] + p[2][c]) / 3;
-    }
-  }
-  std::unordered_map<unsigned long long, size_t> first;  // directed edge -> its triangle
+    for (double& x : m) x = len > 0 ? x / len : 0;
+    return m;
+  };
+  // Distance of p from the line through a and b.
+  auto off_line = [](const double* p, const double* a, const double* b) {
+    const double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double c[3] = {e[1] * w[2] - e[2] * w[1], e[2] * w[0] - e[0] * w[2], e[0] * w[1] - e[1] * w[0]};
+    const double le = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    return le > 0 ? std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / le : 0.0;
+  };
+  std::unordered_map<unsigned long long, size_t> first;  // directed edge -> the corner opposite it
   std::vector<double> radii;
   for (size_t t = 0; t < n; ++t)
-    for (int c = 0; c < 3; ++c) {
-      const auto a = static_cast<unsigned long long>(static_cast<uint32_t>(f.triangles[3 * t + static_cast<size_t>(c)]));
-      const auto b = static_cast<unsigned long long>(static_cast<uint32_t>(f.triangles[3 * t + static_cast<size_t>((c + 1) % 3)]));
+    for (size_t c = 0; c < 3; ++c) {
+      const int32_t va = f.triangles[3 * t + c], vb = f.triangles[3 * t + (c + 1) % 3];
+      const auto a = static_cast<unsigned long long>(static_cast<uint32_t>(va)), b = static_cast<unsigned long long>(static_cast<uint32_t>(vb));
       const auto it = first.find(b << 32 | a);
       if (it == first.end()) {
-        first.emplace(a << 32 | b, t);
+        first.emplace(a << 32 | b, 3 * t + (c + 2) % 3);
         continue;
       }
-      const auto &n0 = normal[it->second], &n1 = normal[t];
-      const double cosine = std::clamp(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2], -1.0, 1.0);
-      const double angle = std::acos(cosine);
+      const auto n0 = normal(it->second / 3), n1 = normal(t);
+      const double angle = std::acos(std::clamp(n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2], -1.0, 1.0));
       if (!(angle > 1e-3)) continue;
-      radii.push_back(distance(centre[it->second].data(), centre[t].data()) / angle);
+      const double h0 = off_line(point(f.triangles[it->second]), point(va), point(vb));
+      const double h1 = off_line(point(f.triangles[3 * t + (c + 2) % 3]), point(va), point(vb));
+      radii.push_back(0.5 * (h0 + h1) / angle);
     }
   if (radii.size() < 4) return std::numeric_limits<double>::infinity();
   const size_t q = radii.size() / 10;
