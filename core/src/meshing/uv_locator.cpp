@@ -50,8 +50,9 @@ UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& 
   const P2 ext = (hi_ - lo_).cwiseMax(P2(1e-300, 1e-300));
   const double cells = std::max<double>(1.0, static_cast<double>(nt));
   const double c = std::sqrt(ext.x() * ext.y() / cells);
-  nx_ = std::clamp(static_cast<int>(ext.x() / std::max(c, 1e-300)) + 1, 1, 4096);
-  ny_ = std::clamp(static_cast<int>(ext.y() / std::max(c, 1e-300)) + 1, 1, 4096);
+  // Clamped as doubles: a domain of (almost) no width has quotients past any int.
+  nx_ = static_cast<int>(std::clamp(std::floor(ext.x() / std::max(c, 1e-300)) + 1, 1.0, 4096.0));
+  ny_ = static_cast<int>(std::clamp(std::floor(ext.y() / std::max(c, 1e-300)) + 1, 1.0, 4096.0));
   cell_ = P2(ext.x() / nx_, ext.y() / ny_);
   std::vector<Index> count(static_cast<size_t>(nx_ * ny_) + 1, 0);
   auto range = [&](size_t t, int& i0, int& i1, int& j0, int& j1) {
