@@ -17,12 +17,21 @@ bool barycentric(const P2& p, const P2& a, const P2& b, const P2& c, double w[3]
   return true;
 }
 
-// Squared distance from p to segment ab and the parameter of the closest point.
-double segment_distance2(const P2& p, const P2& a, const P2& b, double& t) {
-  const P2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).squaredNorm();
+// Distance from p to segment ab and the parameter of the closest point. Computed on the vectors
+// scaled to their largest component, so a domain or a point past 1e154 (whose squared lengths
+// overflow) still gets a finite answer wherever the distance itself is finite.
+double segment_distance(const P2& p, const P2& a, const P2& b, double& t) {
+  const P2 ab = b - a, ap = p - a;
+  const double m = std::max({std::fabs(ab.x()), std::fabs(ab.y()), std::fabs(ap.x()), std::fabs(ap.y())});
+  if (!(m > 0) || !std::isfinite(m)) {
+    t = 0;
+    return std::hypot(ap.x(), ap.y());
+  }
+  const P2 u = ab / m, v = ap / m;
+  const double l2 = u.squaredNorm();
+  t = l2 > 0 ? std::clamp(v.dot(u) / l2, 0.0, 1.0) : 0.0;
+  const P2 d = v - t * u;
+  return m * std::hypot(d.x(), d.y());
 }
 
 }  // namespace
@@ -51,8 +60,19 @@ UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& 
   const double cells = std::max<double>(1.0, static_cast<double>(nt));
   const double c = std::sqrt(ext.x() * ext.y() / cells);
   // Clamped as doubles: a domain of (almost) no width has quotients past any int.
-  nx_ = static_cast<int>(std::clamp(std::floor(ext.x() / std::max(c, 1e-300)) + 1, 1.0, 4096.0));
-  ny_ = static_cast<int>(std::clamp(std::floor(ext.y() / std::max(c, 1e-300)) + 1, 1.0, 4096.0));
+  double fx = std::clamp(std::floor(ext.x() / std::max(c, 1e-300)) + 1, 1.0, 4096.0);
+  double fy = std::clamp(std::floor(ext.y() / std::max(c, 1e-300)) + 1, 1.0, 4096.0);
+  // A few cells per triangle at most: a domain of almost no width in one direction would otherwise
+  // get a grid of millions of empty cells, built and searched for every point.
+  const double budget = 4 * cells + 64;
+  if (fx * fy > budget) {
+    const double k = std::sqrt(budget / (fx * fy));
+    fx = std::max(1.0, std::floor(fx * k));
+    fy = std::max(1.0, std::floor(fy * k));
+    if (fx * fy > budget) (fx > fy ? fx : fy) = std::max(1.0, std::floor(budget / std::min(fx, fy)));
+  }
+  nx_ = static_cast<int>(fx);
+  ny_ = static_cast<int>(fy);
   cell_ = P2(ext.x() / nx_, ext.y() / ny_);
   std::vector<Index> count(static_cast<size_t>(nx_ * ny_) + 1, 0);
   auto range = [&](size_t t, int& i0, int& i1, int& j0, int& j1) {
@@ -127,9 +147,9 @@ void UvLocator::nearest_on_boundary(const P2& p, int ci, int cj, UvHit& hit) con
       const Index t = items_[static_cast<size_t>(k)];
       for (int e = 0; e < 3; ++e) {
         double s;
-        const double d2 = segment_distance2(p, corner(t, e), corner(t, (e + 1) % 3), s);
-        if (d2 < best) {
-          best = d2;
+        const double d = segment_distance(p, corner(t, e), corner(t, (e + 1) % 3), s);
+        if (d < best || hit.tri < 0) {  // the first candidate even at an infinite distance
+          best = d;
           hit.tri = t;
           hit.bary[e] = 1 - s;
           hit.bary[(e + 1) % 3] = s;
@@ -156,7 +176,7 @@ void UvLocator::nearest_on_boundary(const P2& p, int ci, int cj, UvHit& hit) con
     if (ci + r < nx_ - 1) margin = std::min(margin, (lo_.x() + (ci + r + 1) * cell_.x()) - p.x());
     if (cj - r > 0) margin = std::min(margin, p.y() - (lo_.y() + (cj - r) * cell_.y()));
     if (cj + r < ny_ - 1) margin = std::min(margin, (lo_.y() + (cj + r + 1) * cell_.y()) - p.y());
-    if (hit.tri >= 0 && std::sqrt(best) <= margin) break;
+    if (hit.tri >= 0 && best <= margin) break;
   }
 }
 
