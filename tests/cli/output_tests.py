@@ -164,6 +164,24 @@ def start(args):
     return subprocess.Popen([cli_tests.WEFM, *map(str, args)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
+def wait_for_handlers(p, limit=30.0):
+    """Until the process catches or blocks SIGINT and SIGTERM (SigCgt, SigBlk in /proc: the tool blocks
+    them across its huge-page re-exec, and a blocked signal waits for the handlers), or has ended.
+    Before main() a signal ends the process by default, which says nothing about the tool; on a
+    loaded machine the loader alone can take longer than any fixed delay."""
+    want = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
+    t0 = time.monotonic()
+    while p.poll() is None and time.monotonic() - t0 < limit:
+        try:
+            with open(f"/proc/{p.pid}/status") as f:
+                masks = {l.split(":")[0]: int(l.split()[1], 16) for l in f if l.startswith(("SigCgt:", "SigBlk:"))}
+        except (OSError, ValueError):
+            return
+        if (masks.get("SigCgt", 0) | masks.get("SigBlk", 0)) & want == want:
+            return
+        time.sleep(0.002)
+
+
 def case_signals(tmp):
     src, V, T = write_patch(tmp, "big.obj", 120)  # ~28k triangles: a run of a few tenths of a second
     rng = random.Random(int.from_bytes(os.urandom(4), "little"))
@@ -186,9 +204,10 @@ def case_signals(tmp):
             for path in outputs:
                 if os.path.isfile(path):
                     old_file(path)
-            # From 0.1 s: before main() runs (the dynamic loader) no handler can exist yet.
-            delay = rng.uniform(0.1, max(0.1, whole))
+            # Counted from when the handlers are in place: before that no handler can exist yet.
+            delay = rng.uniform(0.0, max(0.1, whole))
             p = start([*args, "-q"])
+            wait_for_handlers(p)
             time.sleep(delay)
             p.send_signal(sig)
             _, err = p.communicate(timeout=120)
@@ -210,6 +229,7 @@ def case_signals(tmp):
     for _ in range(3):
         old = old_file(target)
         p = start(["flatten", big2, "-o", target, "--s", "0", "-q"])
+        wait_for_handlers(p)
         time.sleep(rng.uniform(0.05, 0.6))
         p.send_signal(signal.SIGTERM)
         p.send_signal(signal.SIGTERM)
