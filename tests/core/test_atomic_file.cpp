@@ -22,8 +22,8 @@ namespace {
 struct TempDir {
   fs::path path;
   TempDir() {
-    char tmpl[] = "/tmp/wefm_atomic_XXXXXX";
-    REQUIRE(mkdtemp(tmpl) != nullptr);
+    std::string tmpl = (fs::temp_directory_path() / "wefm_atomic_XXXXXX").string();  // mkdtemp's template
+    REQUIRE(mkdtemp(tmpl.data()) != nullptr);
     path = tmpl;
   }
   ~TempDir() { fs::remove_all(path); }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fuzz_faces.hpp"
+#include "fuzz_files.hpp"
 
 using wefm_fuzz::check;
 using wefm_fuzz::Input;
@@ -141,14 +142,9 @@ void inspect(wefm_domain_mesh* dm, Input& in) {
     if (r.nodes != nodes || (r.nodes_per_element != 3 && r.nodes_per_element != 4) || r.elements * r.nodes_per_element != static_cast<int64_t>(el.size()))
       violated("domain mesh report", "counts differ from the arrays");
   }
-  // Written to a private temporary folder, then removed.
-  char dir[] = "/tmp/wefm_fuzz_domain_mesh_XXXXXX";
-  if (!mkdtemp(dir)) return;
-  const std::string path = std::string(dir) + "/mesh.obj";
-  check(wefm_domain_mesh_write_obj(dm, path.c_str()), nullptr);
-  check(wefm_domain_mesh_write_obj(dm, dir), nullptr);  // a folder: WEFM_ERROR_IO
-  std::remove(path.c_str());
-  rmdir(dir);
+  // Written to the process's private temporary folder (fuzz_files.hpp), removed at exit.
+  check(wefm_domain_mesh_write_obj(dm, wefm_fuzz::temp_path("mesh.obj").c_str()), nullptr);
+  check(wefm_domain_mesh_write_obj(dm, wefm_fuzz::temp_folder().c_str()), nullptr);  // a folder: WEFM_ERROR_IO
 }
 
 }  // namespace
