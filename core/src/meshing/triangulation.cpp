@@ -186,15 +186,6 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
   for (const Rim& r : rim) scale2 = std::max(scale2, (pts_[r.b] - pts_[r.a]).squaredNorm());
   for (size_t k = 0; ok && encroached && k < rim.size(); ++k)
     if ((pts_[rim[k].a] - p).squaredNorm() <= kSameNode2 * scale2) ok = false;
-  // Every node of the cavity stays on its rim. A node inside it (the point a rounding away from it,
-  // its triangles all taken) would drop out of the triangulation and come back later as a second node
-  // at the same place: zero-area triangles.
-  for (size_t k = 0; ok && k < cav.size(); ++k)
-    for (Index w : tris_[cav[k]].v)
-      if (std::none_of(rim.begin(), rim.end(), [w](const Rim& r) { return r.a == w; })) {
-        ok = false;
-        break;
-      }
   for (Index t : cav) mark[t] = 0;
   if (!ok) return -1;
   const bool inside = tris_[t0].inside;
