@@ -54,7 +54,7 @@ for t in $targets; do
   echo "   $t: ${execs:-?} executions, ${cov:-cov ?}, exit $rc, $found new artifact(s) in $dir/artifacts/$t"
   if [ "$rc" -ne 0 ] || [ "$found" -ne 0 ]; then
     status=1
-    grep -m5 -E 'ERROR|invariant violated|SUMMARY|Test unit written' "$log" || true
+    grep -m8 -E "^==[0-9]+==ERROR|^ERROR: libFuzzer|^SUMMARY|invariant violated|runtime error|Test unit written|deadly signal" "$log" || true
   fi
 done
 exit $status

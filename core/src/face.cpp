@@ -185,6 +185,13 @@ void Face::solve(const ProgressFn& progress, const std::atomic<bool>* cancel) {
   r.report.time.topology = t_topo;
   r.report.time.total += t_topo;
   result_ = std::move(r);
+  if (!result_->report.converged && options_.method == Method::Rollout) {
+    const int sweeps = result_->report.iterative_iterations;
+    fail(Errc::not_converged, "the roll-out's sweeps " +
+                                  (sweeps < options_.max_rollout_sweeps ? "diverged to overflow after " + std::to_string(sweeps) + " sweeps"
+                                                                        : "did not settle within max_rollout_sweeps (" + std::to_string(sweeps) + ")") +
+                                  "; the layout after the smallest sweep move is available");
+  }
   if (!result_->report.converged) {
     std::string where = "a continuation step";
     if (!result_->steps.empty()) {

@@ -1,6 +1,7 @@
 #include "wefm/core/rollout.hpp"
 
 #include <cmath>
+#include <limits>
 #include <queue>
 #include <string>
 
@@ -87,7 +88,8 @@ RolloutResult rollout(const TriMesh& mesh, const Topology& tp, const Coefficient
         if (placed[static_cast<size_t>(i)]) continue;
         if (placed[static_cast<size_t>(u1(hs))] && placed[static_cast<size_t>(u2(hs))]) {
           ring_placed[static_cast<size_t>(i)] += c.length[hs];
-          pq.push({ring_placed[static_cast<size_t>(i)] / ring_total[static_cast<size_t>(i)], i});
+          const double total = ring_total[static_cast<size_t>(i)];
+          pq.push({total > 0 ? ring_placed[static_cast<size_t>(i)] / total : 0.0, i});  // a NaN key breaks the heap's order
         }
       }
     }
@@ -101,6 +103,9 @@ RolloutResult rollout(const TriMesh& mesh, const Topology& tp, const Coefficient
     if (placed[static_cast<size_t>(i)]) continue;
     Complex p;
     if (!predict(i, true, p)) continue;
+    if (!std::isfinite(p.real()) || !std::isfinite(p.imag()))
+      fail(Errc::invalid_mesh, "roll-out placed use " + std::to_string(i) +
+                                   " at a non-finite position: its triangles' edge lengths span more than double precision can weigh; use the global method or rescale the mesh");
     rr.z[i] = p;
     placed[static_cast<size_t>(i)] = 1;
     on_placed(i);
@@ -108,24 +113,36 @@ RolloutResult rollout(const TriMesh& mesh, const Topology& tp, const Coefficient
   }
   for (Index u = 0; u < n; ++u)
     if (!placed[static_cast<size_t>(u)]) fail(Errc::internal, "roll-out could not reach use " + std::to_string(u));
-  // Gauss-Seidel sweeps with all predictions.
+  // Gauss-Seidel sweeps with all predictions. Nothing guarantees they contract: on triangles
+  // whose edge lengths span most of double precision's range they can diverge to overflow. The
+  // layout kept is the one after the smallest move, and a sweep that leaves any coordinate
+  // non-finite ends the iteration unconverged.
+  VectorXc best = rr.z;
+  double best_move = std::numeric_limits<double>::infinity();
   for (int sweep = 0; sweep < opt.max_rollout_sweeps; ++sweep) {
     double move = 0;
     for (Index i = 0; i < n; ++i) {
       if (fixed[static_cast<size_t>(i)]) continue;
       Complex p;
       if (!predict(i, false, p)) continue;
-      move = std::max(move, std::abs(p - rr.z[i]));
+      const double d = std::abs(p - rr.z[i]);
+      if (!(d <= move)) move = d;  // NaN included
       rr.z[i] = p;
     }
     rr.sweeps = sweep + 1;
     rr.last_move = move;
+    if (!std::isfinite(move) || !rr.z.allFinite()) break;
+    if (move < best_move) {
+      best_move = move;
+      best = rr.z;
+    }
     if (move < opt.rollout_tolerance) {
       rr.converged = true;
       break;
     }
     if (sweep % 16 == 0) check(0.3 + 0.7 * sweep / opt.max_rollout_sweeps);
   }
+  if (!rr.converged) rr.z = std::move(best);
   if (pins.empty()) {  // translation gauge: area-weighted centroid at the origin
     Complex cen{0, 0};
     double w = 0;

@@ -112,3 +112,41 @@ TEST_CASE("the uncut open cylinder at s = 1 comes back valid at s = 1, through s
   REQUIRE(r.steps.size() >= 3);
   for (size_t j = r.steps.size() - 3; j < r.steps.size(); ++j) CHECK(r.steps[j].converged);
 }
+
+TEST_CASE("roll-out sweeps that diverge to overflow end unconverged with a finite layout") {
+  // A three-sided tube, one corner moved 1e134 away (a fuzzer's find): the placement is finite,
+  // the Gauss-Seidel sweeps overflow within three. The layout kept must be finite and the solve
+  // must say it did not converge, never return infinities or NaN as a result.
+  TriMesh m;
+  const double c = std::cos(2 * M_PI / 3), s = std::sin(2 * M_PI / 3);
+  for (int j = 0; j < 4; ++j) {
+    m.vertices.push_back({1, 0, 0.5 * j});
+    m.vertices.push_back({c, s, 0.5 * j});
+    m.vertices.push_back({c, -s, 0.5 * j});
+  }
+  m.vertices[0] = {1, 5.6875, 0};
+  m.vertices[1].x() = -3.1638862116397002e+134;
+  for (Index j = 0; j < 3; ++j)
+    for (Index i = 0; i < 3; ++i) {
+      const Index a = 3 * j + i, b = 3 * j + (i + 1) % 3;
+      m.triangles.push_back({a, b, b + 3});
+      m.triangles.push_back({a, b + 3, a + 3});
+    }
+  Options o = test::with_s(0.0);
+  o.method = Method::Rollout;
+  o.auto_cut = true;
+  o.max_rollout_sweeps = 200;
+  Face f;
+  f.set_mesh(m);
+  f.set_options(o);
+  try {
+    f.solve(nullptr, nullptr);
+    FAIL("the sweeps converged");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::not_converged);
+    CHECK(std::string(e.what()).find("diverged") != std::string::npos);
+  }
+  REQUIRE(f.has_result());
+  CHECK(f.result().uv.allFinite());
+  CHECK(f.result().report.iterative_iterations < o.max_rollout_sweeps);
+}
