@@ -23,7 +23,7 @@ using wefm_fuzz::violated;
 
 namespace {
 
-// Largest extent of the face's vertices (0 without a mesh).
+// Largest extent of the face's layout and of its vertices in 3D (0 without a mesh).
 double extent(wefm_face* f, Input& in, std::vector<double>& xyz_of_edge, int32_t& edge) {
   int64_t edges = 0;
   edge = -1;
@@ -54,7 +54,15 @@ double extent(wefm_face* f, Input& in, std::vector<double>& xyz_of_edge, int32_t
         break;
       }
   }
-  return std::fmax(hi[0] - lo[0], hi[1] - lo[1]);
+  // Sizes are in 3D units: a collapsed layout (an unconverged roll-out of an uncut tube) has a tiny
+  // UV extent, and a size from it alone asks for tens of millions of elements of a valid request.
+  double lo3[3] = {1e300, 1e300, 1e300}, hi3[3] = {-1e300, -1e300, -1e300};
+  std::vector<double> xyz(uv.size() / 2 * 3);
+  if (!uv.empty()) check(wefm_face_map_uv_to_3d(f, static_cast<int64_t>(uv.size() / 2), uv.data(), xyz.data(), nullptr, nullptr), f);
+  for (size_t i = 0; i < xyz.size(); ++i) lo3[i % 3] = std::fmin(lo3[i % 3], xyz[i]), hi3[i % 3] = std::fmax(hi3[i % 3], xyz[i]);
+  double span = std::fmax(hi[0] - lo[0], hi[1] - lo[1]);
+  for (int k = 0; k < 3 && !xyz.empty(); ++k) span = std::fmax(span, hi3[k] - lo3[k]);
+  return span;
 }
 
 // Caller nodes along an edge: its own vertices, some points between them, some moved off it.
