@@ -11,7 +11,7 @@ def test_defaults_are_the_library_defaults():
     raw = wefm._structs.Options()
     assert wefm._lib.options_init(ctypes.byref(raw), ctypes.sizeof(raw)) == 0
     assert raw.struct_size == ctypes.sizeof(wefm._structs.Options)   # the mirror has the C size
-    assert wefm.Options().as_dict() == wefm._structs.struct_to_dict(raw)
+    assert wefm.Options().as_dict() == wefm._records.struct_to_dict(raw)
 
 
 def test_face_options_round_trip():

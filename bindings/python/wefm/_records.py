@@ -18,6 +18,17 @@ def initialised(cls, init_fn):
     return out
 
 
+def struct_to_dict(struct):
+    """Plain-Python copy of a struct's fields (arrays become tuples), without struct_size."""
+    out = {}
+    for name, _ in struct._fields_:
+        if name == "struct_size":
+            continue
+        value = getattr(struct, name)
+        out[name] = tuple(value) if isinstance(value, ctypes.Array) else value
+    return out
+
+
 def _record(name, struct_cls, doc):
     fields = []
     for field, ctype in struct_cls._fields_:
@@ -29,7 +40,7 @@ def _record(name, struct_cls, doc):
     cls.__doc__ = doc
     cls.__module__ = "wefm"
     cls.as_dict = dataclasses.asdict
-    cls.from_struct = classmethod(lambda c, st: c(**S.struct_to_dict(st)))
+    cls.from_struct = classmethod(lambda c, st: c(**struct_to_dict(st)))
     return cls
 
 

@@ -10,12 +10,15 @@ import ctypes
 from . import _structs as S
 from ._api import lib
 from ._checked import C_INTEGERS, c_integer
-from ._records import initialised
+from ._records import initialised, struct_to_dict
+
+# wefm_edge_mode by value: EDGE_MODE_NAMES[S.EDGE_PERIODIC] == "periodic".
+EDGE_MODE_NAMES = ("auto", "free", "periodic", "scar", "rotational")
 
 _ENUMS = {
     "method": {"global": S.METHOD_GLOBAL, "rollout": S.METHOD_ROLLOUT},
     "solver": {"auto": S.SOLVER_AUTO, "cholmod": S.SOLVER_CHOLMOD, "eigen": S.SOLVER_EIGEN},
-    "default_edge_mode": {n: i for i, n in enumerate(S.EDGE_MODE_NAMES)},
+    "default_edge_mode": {n: i for i, n in enumerate(EDGE_MODE_NAMES)},
     "type": {"free": S.MESH_FREE, "transfinite": S.MESH_TRANSFINITE},
     "residual": {"half-edge": S.RESIDUAL_PER_HALF_EDGE, "use": S.RESIDUAL_PER_USE},
 }
@@ -25,9 +28,9 @@ def edge_mode_value(mode):
     """An edge mode given as int or name ("periodic") -> int."""
     if isinstance(mode, str):
         try:
-            return S.EDGE_MODE_NAMES.index(mode.lower())
+            return EDGE_MODE_NAMES.index(mode.lower())
         except ValueError:
-            raise ValueError("unknown edge mode %r; one of %s" % (mode, ", ".join(S.EDGE_MODE_NAMES)))
+            raise ValueError("unknown edge mode %r; one of %s" % (mode, ", ".join(EDGE_MODE_NAMES)))
     return mode  # range-checked with the call (_checked)
 
 
@@ -87,7 +90,7 @@ class _StructOptions:
         return self
 
     def as_dict(self):
-        return S.struct_to_dict(self._struct)
+        return struct_to_dict(self._struct)
 
     def __repr__(self):
         return "%s(%s)" % (type(self).__name__,
