@@ -32,6 +32,8 @@
 #include <TopoDS_Wire.hxx>
 #include <gp_Vec.hxx>
 
+#include "cad_face_repair.hpp"
+
 namespace wefm_cad {
 
 namespace {
@@ -89,8 +91,15 @@ constexpr double kFoldedArea = 1e-3;
 
 class Importer {
  public:
+  // An INTERNAL or EXTERNAL face (a sheet inside or beside a solid) hands that orientation down to
+  // its wires and edges, which would then read as constraint lines and leave the face without a
+  // boundary: it is imported as FORWARD.
   Importer(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edges, CadFace& out)
-      : face_(face), edge_map_(edges), out_(out) {}
+      : face_(face.Orientation() == TopAbs_INTERNAL || face.Orientation() == TopAbs_EXTERNAL
+                  ? TopoDS::Face(face.Oriented(TopAbs_FORWARD))
+                  : face),
+        edge_map_(edges),
+        out_(out) {}
 
   bool run() {
     tri_ = BRep_Tool::Triangulation(face_, loc_);
@@ -228,8 +237,50 @@ class Importer {
     t = std::move(kept);
   }
 
-  void build_mesh(UnionFind& uf) {
+  // The facets as corner triples of merged nodes, outward. Facets that collapse in the merge (at a
+  // pole or apex) are dropped, and so are facets on the same three corners: two of them facing
+  // opposite ways close a pocket of no surface (BRepMesh leaves these beside a pole, where they hang
+  // on the rest by the pole alone), two facing the same way are one facet twice.
+  std::vector<std::array<int, 3>> merged_facets(UnionFind& uf) {
     const bool flip = face_.Orientation() == TopAbs_REVERSED;
+    std::vector<std::array<int, 3>> facets;
+    std::map<std::array<int, 3>, std::vector<size_t>> by_corners;
+    for (int t = 1; t <= tri_->NbTriangles(); ++t) {
+      int a = 0, b = 0, c = 0;
+      tri_->Triangle(t).Get(a, b, c);
+      if (flip) std::swap(b, c);  // outward: the triangulation follows the surface normal
+      const std::array<int, 3> r = {uf.find(a - 1), uf.find(b - 1), uf.find(c - 1)};
+      if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2]) {
+        ++out_.dropped_triangles;
+        continue;
+      }
+      std::array<int, 3> sorted = r;
+      std::sort(sorted.begin(), sorted.end());
+      by_corners[sorted].push_back(facets.size());
+      facets.push_back(r);
+    }
+    std::vector<bool> keep(facets.size(), true);
+    for (const auto& [corners, list] : by_corners) {
+      if (list.size() < 2) continue;
+      int turn = 0;  // facets one way minus facets the other way
+      for (size_t k : list) turn += same_turn(facets[k], facets[list.front()]) ? 1 : -1;
+      for (size_t i = 0; i < list.size(); ++i) keep[list[i]] = turn != 0 && i == 0;
+    }
+    std::vector<std::array<int, 3>> kept;
+    for (size_t k = 0; k < facets.size(); ++k) {
+      if (keep[k]) kept.push_back(facets[k]);
+      else ++out_.dropped_triangles;
+    }
+    return kept;
+  }
+
+  static bool same_turn(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    for (int s = 0; s < 3; ++s)
+      if (a[0] == b[static_cast<size_t>(s)] && a[1] == b[static_cast<size_t>((s + 1) % 3)]) return true;
+    return false;
+  }
+
+  void build_mesh(UnionFind& uf) {
     std::vector<int32_t> index(points_.size(), -1);
     auto vertex_of = [&](int node) {
       const int r = uf.find(node);
@@ -241,25 +292,8 @@ class Importer {
       }
       return v;
     };
-    std::set<std::array<int32_t, 3>> seen;
-    for (int t = 1; t <= tri_->NbTriangles(); ++t) {
-      int a = 0, b = 0, c = 0;
-      tri_->Triangle(t).Get(a, b, c);
-      if (flip) std::swap(b, c);  // outward: the triangulation follows the surface normal
-      const int ra = uf.find(a - 1), rb = uf.find(b - 1), rc = uf.find(c - 1);
-      if (ra == rb || rb == rc || ra == rc) {  // collapsed at a pole or apex
-        ++out_.dropped_triangles;
-        continue;
-      }
-      std::array<int32_t, 3> key = {vertex_of(a - 1), vertex_of(b - 1), vertex_of(c - 1)};
-      std::array<int32_t, 3> sorted = key;
-      std::sort(sorted.begin(), sorted.end());
-      if (!seen.insert(sorted).second) {  // two triangles on the same corners after the merge
-        ++out_.dropped_triangles;
-        continue;
-      }
-      out_.triangles.insert(out_.triangles.end(), key.begin(), key.end());
-    }
+    for (const std::array<int, 3>& f : merged_facets(uf))
+      for (int node : f) out_.triangles.push_back(vertex_of(node));
     drop_slivers_on_overused_edges();
     if (out_.triangles.empty()) {
       fail("no triangle left after merging seam sides and degenerate points");
@@ -272,9 +306,10 @@ class Importer {
         if (chain.empty() || chain.back() != v) chain.push_back(v);
       }
     }
+    split_pinched_vertices(out_);
   }
 
-  const TopoDS_Face& face_;
+  const TopoDS_Face face_;
   const TopTools_IndexedMapOfShape& edge_map_;
   CadFace& out_;
   TopLoc_Location loc_;
