@@ -5,6 +5,7 @@
 // is meshed in its domain and mapped back (wefm_face_mesh_domain); the face meshes are welded along
 // their shared edge nodes into one conforming surface mesh (model_mesh).
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -99,6 +100,7 @@ struct FaceMeshRun {
   int64_t flips = 0;
   wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
   int edge_refinements = 0;           // times its edges were discretised again (refine_for_failed_faces)
+  int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
 };
 
 Json defect_edges_json(const ConformityCounts& conf) {
@@ -250,6 +252,217 @@ std::vector<size_t> refine_for_failed_faces(const wefm_cad::CadModel& model, std
   return todo;
 }
 
+// The domain mesher breaks a face's boundary at a sharp corner of its flattened domain; a corner
+// inside a model edge (a kink of the edge's facet chain) gets a node there that the edge's given
+// nodes do not have. The other faces on the edge then lack it (a T-junction: a crack in the model's
+// mesh), and even on a seam, used by its one face, the given segment over it is not in the mesh.
+// Such a node is a node of the edge: it joins the edge's nodes, and every face on the edge whose
+// mesh does not have it is meshed again with it. At most this many rounds.
+constexpr int kEdgeNodeAdoptions = 3;
+
+struct EdgeNode {
+  double s;  // arc length along the edge's chain
+  std::array<double, 3> p;
+};
+
+double distance3(const double* a, const double* b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+PointGrid boundary_grid(const FaceMeshRun& r, double tol) {
+  PointGrid grid(tol);
+  const std::vector<char> boundary = ModelMesh::boundary_nodes(r.xyz.size() / 3, r.tris);
+  for (size_t v = 0; v < boundary.size(); ++v)
+    if (boundary[v]) grid.add(&r.xyz[3 * v], static_cast<int32_t>(v));
+  return grid;
+}
+
+// Interior chain vertices of the face's edges where its mesh has a boundary node the edge's given
+// nodes do not have, by edge id.
+void nodes_put_on_edges(const FaceMeshRun& r, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
+                        std::map<long long, std::vector<EdgeNode>>& out) {
+  if (r.tris.empty()) return;
+  const PointGrid grid = boundary_grid(r, tol);
+  const wefm_cad::CadFace& f = *r.face;
+  for (const wefm_cad::CadEdge& e : f.edges) {
+    const auto it = edge_nodes.find(e.id);
+    if (it == edge_nodes.end()) continue;
+    const std::vector<double>& given = it->second.xyz;
+    double s = 0;
+    for (size_t k = 1; k + 1 < e.vertices.size(); ++k) {
+      const double* p = &f.xyz[3 * static_cast<size_t>(e.vertices[k])];
+      s += distance3(&f.xyz[3 * static_cast<size_t>(e.vertices[k - 1])], p);
+      if (grid.find(p, r.xyz) < 0) continue;
+      bool known = false;
+      for (size_t g = 0; g + 2 < given.size() && !known; g += 3) known = distance3(p, &given[g]) <= tol;
+      if (!known) out[e.id].push_back({s, {p[0], p[1], p[2]}});
+    }
+  }
+}
+
+// The edge's nodes with `added` among them, in order of arc length along the face's chain of the edge.
+std::vector<double> with_nodes(const wefm_cad::CadFace& f, const wefm_cad::CadEdge& e, const std::vector<double>& nodes,
+                               std::vector<EdgeNode> added, double tol) {
+  std::vector<EdgeNode> all;
+  const size_t n = nodes.size() / 3, m = e.vertices.size();
+  auto at = [&](size_t k) { return &f.xyz[3 * static_cast<size_t>(e.vertices[k])]; };
+  // The nodes lie on the chain in order: each is found on the first segment, from the previous
+  // one's on, that passes within the tolerance (the ends of a closed edge are the chain's ends).
+  size_t seg = 0;
+  double s0 = 0;  // arc length at the start of segment seg
+  for (size_t j = 0; j < n; ++j) {
+    const double* p = &nodes[3 * j];
+    double s = j + 1 == n ? -1 : s0;
+    for (size_t q = seg; q + 1 < m && j + 1 < n; ++q) {
+      const double* a = at(q);
+      const double* b = at(q + 1);
+      const double len = distance3(a, b);
+      double t = 0;
+      if (len > 0) {
+        for (int c = 0; c < 3; ++c) t += (p[c] - a[c]) * (b[c] - a[c]);
+        t = std::clamp(t / (len * len), 0.0, 1.0);
+      }
+      const double x[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+      if (distance3(p, x) <= tol) {
+        s = s0 + t * len;
+        break;
+      }
+      s0 += len, seg = q + 1;
+    }
+    all.push_back({s, {p[0], p[1], p[2]}});
+  }
+  double total = 0;
+  for (size_t k = 0; k + 1 < m; ++k) total += distance3(at(k), at(k + 1));
+  if (!all.empty()) all.back().s = total;
+  for (const EdgeNode& a : added)
+    if (std::none_of(all.begin(), all.end(), [&](const EdgeNode& b) { return distance3(a.p.data(), b.p.data()) <= tol; }))
+      all.push_back(a);
+  std::stable_sort(all.begin(), all.end(), [](const EdgeNode& a, const EdgeNode& b) { return a.s < b.s; });
+  std::vector<double> out;
+  for (const EdgeNode& a : all) out.insert(out.end(), a.p.begin(), a.p.end());
+  return out;
+}
+
+// Adds the nodes the face meshes put on model edges to those edges; returns the faces to mesh again
+// (those on such an edge whose mesh lacks one of its nodes), reset for meshing.
+std::vector<size_t> adopt_edge_nodes(const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
+                                     std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol) {
+  std::map<long long, std::vector<EdgeNode>> added;
+  for (const FaceMeshRun& r : runs) nodes_put_on_edges(r, edge_nodes, tol, added);
+  if (added.empty()) return {};
+  std::set<long long> done;
+  for (const wefm_cad::CadFace& f : model.faces)
+    for (const wefm_cad::CadEdge& e : f.edges)
+      if (added.count(e.id) && done.insert(e.id).second)
+        edge_nodes[e.id].xyz = with_nodes(f, e, edge_nodes[e.id].xyz, added[e.id], tol);
+  std::vector<size_t> todo;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    bool lacks = false;
+    std::unique_ptr<PointGrid> grid;
+    for (const wefm_cad::CadEdge& e : model.faces[i].edges) {
+      const auto it = added.find(e.id);
+      if (it == added.end() || runs[i].tris.empty()) continue;
+      if (!grid) grid = std::make_unique<PointGrid>(boundary_grid(runs[i], tol));
+      for (const EdgeNode& a : it->second) lacks = lacks || grid->find(a.p.data(), runs[i].xyz) < 0;
+    }
+    if (lacks) todo.push_back(i);
+  }
+  for (size_t i : todo) {
+    const int refined = runs[i].edge_refinements;
+    runs[i] = FaceMeshRun{};
+    runs[i].face = &model.faces[i];
+    runs[i].edge_refinements = refined;
+  }
+  return todo;
+}
+
+// Faces lying on each other (the touching faces of an assembly's volumes, a body the file holds
+// twice) must be meshed alike, or their meshes cross each other. The later face of such a pair gets
+// the earlier one's mesh (turned over when they face opposite ways) instead of a mesh of its own
+// flattening, which would differ. Candidates: the same area and bounding box of the facets; the
+// copy is made only when the two faces' boundaries carry the same nodes (copy_coincident).
+struct FaceShape {
+  double area;
+  std::array<double, 6> box;
+  std::array<double, 3> normal;  // area-weighted sum of the facet normals
+};
+
+FaceShape shape_of(const wefm_cad::CadFace& f) {
+  FaceShape s{wefm_cad::face_area(f), {1e300, 1e300, 1e300, -1e300, -1e300, -1e300}, {0, 0, 0}};
+  for (size_t v = 0; v + 2 < f.xyz.size(); v += 3)
+    for (size_t c = 0; c < 3; ++c) s.box[c] = std::min(s.box[c], f.xyz[v + c]), s.box[c + 3] = std::max(s.box[c + 3], f.xyz[v + c]);
+  for (size_t t = 0; t + 2 < f.triangles.size(); t += 3) {
+    const double* a = &f.xyz[3 * static_cast<size_t>(f.triangles[t])];
+    const double* b = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 1])];
+    const double* c = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    s.normal[0] += u[1] * w[2] - u[2] * w[1], s.normal[1] += u[2] * w[0] - u[0] * w[2], s.normal[2] += u[0] * w[1] - u[1] * w[0];
+  }
+  return s;
+}
+
+// Per face, the earlier face it lies on (index + 1; that face lies on no earlier one), or 0.
+std::vector<size_t> coincident_faces(const wefm_cad::CadModel& model) {
+  const double tol = 1e-6 * model.bbox_diagonal;
+  std::vector<FaceShape> shapes;
+  for (const wefm_cad::CadFace& f : model.faces) shapes.push_back(shape_of(f));
+  auto usable = [&](size_t i) { return model.faces[i].error.empty() && shapes[i].area > 0; };
+  std::vector<size_t> order(shapes.size()), source(shapes.size(), 0);
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shapes[a].box[0] < shapes[b].box[0]; });
+  std::vector<std::vector<size_t>> earlier(shapes.size());  // per face, the earlier faces of its shape
+  for (size_t k = 0; k < order.size(); ++k)
+    for (size_t q = k + 1; q < order.size() && shapes[order[q]].box[0] - shapes[order[k]].box[0] <= tol; ++q) {
+      const size_t i = std::min(order[k], order[q]), j = std::max(order[k], order[q]);
+      if (!usable(i) || !usable(j) || std::fabs(shapes[i].area - shapes[j].area) > 1e-6 * shapes[j].area) continue;
+      bool same = true;
+      for (size_t c = 0; c < 6 && same; ++c) same = std::fabs(shapes[i].box[c] - shapes[j].box[c]) <= tol;
+      if (same) earlier[j].push_back(i);
+    }
+  for (size_t j = 0; j < shapes.size(); ++j)
+    for (size_t i : earlier[j])
+      if (!source[i] && (!source[j] || i < source[j] - 1)) source[j] = i + 1;
+  return source;
+}
+
+// Gives face j the mesh of face i when every node on j's edges is a boundary node of i's mesh and
+// every boundary node of i's mesh lies on j's edge chains; false (j to be meshed itself) otherwise.
+bool copy_coincident(FaceMeshRun& j, const FaceMeshRun& i, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol) {
+  if (i.tris.empty() || i.status == "failed") return false;
+  const PointGrid grid = boundary_grid(i, tol);
+  PointGrid chain(tol);
+  std::vector<double> chain_xyz;
+  const wefm_cad::CadFace& f = *j.face;
+  for (const wefm_cad::CadEdge& e : f.edges) {
+    for (int32_t v : e.vertices) {
+      chain.add(&f.xyz[3 * static_cast<size_t>(v)], static_cast<int32_t>(chain_xyz.size() / 3));
+      chain_xyz.insert(chain_xyz.end(), &f.xyz[3 * static_cast<size_t>(v)], &f.xyz[3 * static_cast<size_t>(v)] + 3);
+    }
+    const auto it = edge_nodes.find(e.id);
+    if (it == edge_nodes.end()) continue;
+    for (size_t k = 0; k + 2 < it->second.xyz.size(); k += 3) {
+      if (grid.find(&it->second.xyz[k], i.xyz) < 0) return false;
+      chain.add(&it->second.xyz[k], static_cast<int32_t>(chain_xyz.size() / 3));
+      chain_xyz.insert(chain_xyz.end(), &it->second.xyz[k], &it->second.xyz[k] + 3);
+    }
+  }
+  const std::vector<char> boundary = ModelMesh::boundary_nodes(i.xyz.size() / 3, i.tris);
+  for (size_t v = 0; v < boundary.size(); ++v)
+    if (boundary[v] && chain.find(&i.xyz[3 * v], chain_xyz) < 0) return false;
+  const FaceShape a = shape_of(*i.face), b = shape_of(f);
+  const bool flip = a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2] < 0;
+  j.xyz = i.xyz;
+  j.tris = i.tris;
+  if (flip)
+    for (size_t t = 0; t + 2 < j.tris.size(); t += 3) std::swap(j.tris[t + 1], j.tris[t + 2]);
+  j.report = i.report;
+  j.status = "ok";
+  j.reason.clear();
+  j.exit_code = kExitOk;
+  j.copy_of = i.face->index;
+  return true;
+}
+
 int run_mesh_model(const std::vector<std::string>& argv) {
   const auto specs = mesh_model_specs();
   ParsedArgs args;
@@ -386,19 +599,44 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     for (size_t t = 0; t < std::min(n_threads, todo.size()); ++t) threads.emplace_back(worker);
     for (auto& t : threads) t.join();
   };
+  // Weld at a tolerance far below the size and the facet lengths, far above rounding.
+  const double weld_tolerance = 1e-7 * model.bbox_diagonal;
+  const std::vector<size_t> source = coincident_faces(model);
+  // Meshes the faces of `todo`; a face lying on an earlier one gets that one's mesh where it can
+  // (copy_coincident), also when only the earlier one was meshed again.
+  auto mesh_or_copy = [&](const std::vector<size_t>& todo) {
+    const std::set<size_t> asked(todo.begin(), todo.end());
+    std::vector<size_t> own, alone;
+    for (size_t i : todo)
+      if (!source[i]) own.push_back(i);
+    mesh_faces(own);
+    for (size_t j = 0; j < runs.size(); ++j)
+      if (source[j] && (asked.count(j) || asked.count(source[j] - 1))) {
+        const int refined = runs[j].edge_refinements;
+        runs[j] = FaceMeshRun{};
+        runs[j].face = &model.faces[j];
+        runs[j].edge_refinements = refined;
+        if (!copy_coincident(runs[j], runs[source[j] - 1], edge_nodes, weld_tolerance)) alone.push_back(j);
+      }
+    mesh_faces(alone);
+  };
   const auto t_faces = Clock::now();
   std::vector<size_t> todo(runs.size());
   for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
-  mesh_faces(todo);
+  mesh_or_copy(todo);
   for (int round = 0; round < kEdgeRefinements && !interrupted(); ++round) {
     todo = refine_for_failed_faces(model, runs, size, gradation, face_sizes, edge_nodes);
     if (todo.empty()) break;
-    mesh_faces(todo);
+    mesh_or_copy(todo);
+  }
+  for (int round = 0; round < kEdgeNodeAdoptions && !interrupted(); ++round) {
+    todo = adopt_edge_nodes(model, runs, edge_nodes, weld_tolerance);
+    if (todo.empty()) break;
+    mesh_or_copy(todo);
   }
   const double time_faces = since(t_faces);
 
-  // Weld at a tolerance far below the size and the facet lengths, far above rounding.
-  ModelMesh whole(1e-7 * model.bbox_diagonal);
+  ModelMesh whole(weld_tolerance);
   int64_t collapsed = 0;
   for (const FaceMeshRun& r : runs)
     if (!r.tris.empty()) collapsed += whole.add_face(r.face->index, r.xyz, r.tris);
@@ -486,6 +724,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
                        {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
                        {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
                        {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements},
+                       {"mesh_of_face", r.copy_of ? Json(r.copy_of) : Json(nullptr)},
                        {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
     }
     rep["faces"] = faces;

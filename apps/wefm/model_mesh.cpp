@@ -46,15 +46,20 @@ constexpr size_t kListedDefects = 20;
 
 }  // namespace
 
-int32_t ModelMesh::find(const double* p) const {
-  const int64_t ci = static_cast<int64_t>(std::floor(p[0] / tol_)), cj = static_cast<int64_t>(std::floor(p[1] / tol_)),
-                ck = static_cast<int64_t>(std::floor(p[2] / tol_));
-  for (int64_t di = -1; di <= 1; ++di)
-    for (int64_t dj = -1; dj <= 1; ++dj)
-      for (int64_t dk = -1; dk <= 1; ++dk) {
-        auto range = grid_.equal_range(cell_key(ci + di, cj + dj, ck + dk));
+uint64_t PointGrid::key(const double* p, int di, int dj, int dk) const {
+  return cell_key(static_cast<int64_t>(std::floor(p[0] / tol_)) + di, static_cast<int64_t>(std::floor(p[1] / tol_)) + dj,
+                  static_cast<int64_t>(std::floor(p[2] / tol_)) + dk);
+}
+
+void PointGrid::add(const double* p, int32_t id) { cells_.emplace(key(p, 0, 0, 0), id); }
+
+int32_t PointGrid::find(const double* p, const std::vector<double>& xyz) const {
+  for (int di = -1; di <= 1; ++di)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int dk = -1; dk <= 1; ++dk) {
+        auto range = cells_.equal_range(key(p, di, dj, dk));
         for (auto it = range.first; it != range.second; ++it) {
-          const double* q = &xyz_[3 * static_cast<size_t>(it->second)];
+          const double* q = &xyz[3 * static_cast<size_t>(it->second)];
           if (std::fabs(p[0] - q[0]) <= tol_ && std::fabs(p[1] - q[1]) <= tol_ && std::fabs(p[2] - q[2]) <= tol_)
             return it->second;
         }
@@ -62,14 +67,14 @@ int32_t ModelMesh::find(const double* p) const {
   return -1;
 }
 
+int32_t ModelMesh::find(const double* p) const { return grid_.find(p, xyz_); }
+
 int32_t ModelMesh::weld(const double* p, int face_tag) {
   if (const int32_t found = find(p); found >= 0) return found;
   const int32_t id = static_cast<int32_t>(xyz_.size() / 3);
   xyz_.insert(xyz_.end(), p, p + 3);
   node_face_.push_back(face_tag);
-  grid_.emplace(cell_key(static_cast<int64_t>(std::floor(p[0] / tol_)), static_cast<int64_t>(std::floor(p[1] / tol_)),
-                         static_cast<int64_t>(std::floor(p[2] / tol_))),
-                id);
+  grid_.add(p, id);
   return id;
 }
 
@@ -91,15 +96,19 @@ void ModelMesh::expect_model_edge(const std::vector<double>& nodes, int face_use
   }
 }
 
-int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
-  face_tags_.push_back(face_tag);
-  // Boundary nodes of this face's mesh: on an edge used by one of its triangles.
+std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int32_t>& triangles) {
   std::unordered_map<uint64_t, int> uses;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3)
     for (int c = 0; c < 3; ++c) ++uses[pair_key(triangles[t + static_cast<size_t>(c)], triangles[t + static_cast<size_t>((c + 1) % 3)])];
-  std::vector<char> boundary(xyz.size() / 3, 0);
+  std::vector<char> boundary(nodes, 0);
   for (const auto& [key, n] : uses)
     if (n == 1) boundary[key >> 32] = boundary[key & 0xffffffffULL] = 1;
+  return boundary;
+}
+
+int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
+  face_tags_.push_back(face_tag);
+  const std::vector<char> boundary = boundary_nodes(xyz.size() / 3, triangles);
   std::vector<int32_t> global(xyz.size() / 3);
   for (size_t v = 0; v < global.size(); ++v) {
     if (boundary[v]) {
@@ -162,13 +171,32 @@ ConformityCounts ModelMesh::conformity() const {
   for (const auto& [key, r] : run)
     if (r.second != 2) odd_in_a_face[key] = 1;
   // Faces that lie on each other are meshed alike: their triangles at the edge are the same two
-  // node triples. Triangles that differ are faces folded onto each other, a defect.
+  // triples of points. Triangles that differ are faces folded onto each other, a defect. Points, not
+  // nodes: the faces' interior nodes are not welded (see add_face), so two coincident faces meshed
+  // alike (the touching faces of an assembly's volumes, or a body the file holds twice) have the
+  // same triangles on nodes of their own.
   std::unordered_map<uint64_t, std::vector<std::array<int32_t, 3>>> around;
+  PointGrid points(grid_.tolerance());
+  std::vector<double> point_xyz;                  // the distinct points seen, 3 doubles each
+  std::unordered_map<int32_t, int32_t> point_of;  // node -> index of its point
+  auto point = [&](int32_t v) {
+    const auto [it, fresh] = point_of.emplace(v, 0);
+    if (fresh) {
+      const double* p = &xyz_[3 * static_cast<size_t>(v)];
+      it->second = points.find(p, point_xyz);
+      if (it->second < 0) {
+        it->second = static_cast<int32_t>(point_xyz.size() / 3);
+        points.add(p, it->second);
+        point_xyz.insert(point_xyz.end(), p, p + 3);
+      }
+    }
+    return it->second;
+  };
   for (size_t t = 0; t + 2 < tris_.size(); t += 3)
     for (int c = 0; c < 3; ++c) {
       const uint64_t key = pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)]);
       if (uses[key] <= 2 || odd_in_a_face.count(key) || expected_uses_.count(key)) continue;
-      std::array<int32_t, 3> corners{tris_[t], tris_[t + 1], tris_[t + 2]};
+      std::array<int32_t, 3> corners{point(tris_[t]), point(tris_[t + 1]), point(tris_[t + 2])};
       std::sort(corners.begin(), corners.end());
       around[key].push_back(corners);
     }
@@ -184,7 +212,7 @@ ConformityCounts ModelMesh::conformity() const {
     out.non_manifold_edges += n > 2;
     const auto it = expected_uses_.find(key);
     // Off the model edges: twice, or twice by each of several faces lying on each other (touching
-    // volumes of an assembly whose faces coincide, meshed alike and welded).
+    // volumes of an assembly whose faces coincide, meshed alike).
     const int want = it != expected_uses_.end() ? it->second : (odd_in_a_face.count(key) ? 2 : n);
     out.brep_edge_segments += it != expected_uses_.end();
     if (n != want) {

@@ -12,6 +12,20 @@
 
 namespace wefm_cli {
 
+// Points by grid cells of side `tol`: the point within `tol` (per coordinate) of a query, if any.
+class PointGrid {
+ public:
+  explicit PointGrid(double tol) : tol_(tol > 0 ? tol : 1e-300) {}
+  void add(const double* p, int32_t id);
+  int32_t find(const double* p, const std::vector<double>& xyz) const;  // ids index xyz (3 per id); -1 if none
+  double tolerance() const { return tol_; }
+
+ private:
+  uint64_t key(const double* p, int di, int dj, int dk) const;
+  double tol_;
+  std::unordered_multimap<uint64_t, int32_t> cells_;
+};
+
 struct ConformityCounts {
   int64_t edges = 0;
   int64_t open_edges = 0;          // used by one triangle: the model's free edges, or a gap
@@ -41,7 +55,7 @@ struct LambdaStats {
 
 class ModelMesh {
  public:
-  explicit ModelMesh(double weld_tolerance) : tol_(weld_tolerance) {}
+  explicit ModelMesh(double weld_tolerance) : grid_(weld_tolerance) {}
 
   // Adds one face's mesh (3 doubles per node, 3 node indices per triangle). Returns the number of
   // triangles dropped because welding collapsed them (at a pole) or folded two of them onto the same
@@ -54,6 +68,8 @@ class ModelMesh {
   void expect_model_edge(const std::vector<double>& nodes, int face_uses);
 
   ConformityCounts conformity() const;
+  // Per node of a face mesh: whether it is on the mesh's boundary (an edge only one triangle uses).
+  static std::vector<char> boundary_nodes(size_t nodes, const std::vector<int32_t>& triangles);
   LambdaStats lambda() const;
   static LambdaStats lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
 
@@ -70,13 +86,12 @@ class ModelMesh {
   int32_t find(const double* p) const;  // the welded node at p, or -1
   void note_defect(ConformityCounts& out, uint64_t key, int uses, int expected) const;
 
-  double tol_;
   std::vector<double> xyz_;
   std::vector<int> node_face_;          // face that first contributed the node (its MSH entity)
   std::vector<int32_t> tris_;
   std::vector<int> tri_face_;
   std::vector<int> face_tags_;          // in order of addition
-  std::unordered_multimap<uint64_t, int32_t> grid_;  // welded boundary nodes by grid cell
+  PointGrid grid_;                      // welded boundary nodes
   std::unordered_map<uint64_t, int> expected_uses_;  // node pair on a model edge -> face uses
 };
 

@@ -4,9 +4,15 @@ bounding-box diagonal (the full run over every model against Gmsh is bench/stres
 
 Each model here once broke a property of issue 28: a face the flattener gives a scar seam (tori and
 cones of gmsh_Solid_56) was refused; a refinement cascade hung on occt_MODERN_Chair_1 f135 and left
-zero-area triangles on gmsh_1385_Laufrad_1000; nodeocc_kuka crashed the process. For each: no crash, an
-exit code that tells the truth about the mesh (0 only when every face is meshed and every edge is used
-as the B-rep says), and where it is 0, no zero-area triangle and a sound lambda.
+zero-area triangles on gmsh_1385_Laufrad_1000; nodeocc_kuka crashed the process; a face broke its
+boundary at a kink inside a model edge, a node the neighbouring face did not have (occt_Top: a crack),
+and on a seam a segment the checker then missed (gmsh_problemSphere). For each: no crash, an exit code
+that tells the truth about the mesh (0 only when every face is meshed and every edge is used as the
+B-rep says), and where it is 0, no zero-area triangle and a sound lambda.
+
+touching_prisms.brep (tests/cad/data): two triangular prisms stacked, not fused, so the top of one and
+the bottom of the other are two faces lying on each other; made with Gmsh 4.8 (OpenCASCADE factory:
+the triangle (0,0,0) (1,0,0) (0.9,0.2,0) extruded by 0.3 in z twice, `Save "x.brep"`).
 
 usage: model_mesh_test.py WEFM CAD_MORE_DIR
 """
@@ -19,18 +25,30 @@ from collections import Counter
 
 # (model, must be clean): clean = exit 0, every face meshed, every edge as the B-rep says.
 MODELS = [("gmsh_Solid_56.step", True), ("occt_MODERN_Chair_1.brep", True), ("gmsh_1385_Laufrad_1000.stp", True),
-          ("gmsh_cube_filet.stp", True), ("nodeocc_kuka.stp", False)]
+          ("gmsh_cube_filet.stp", True), ("nodeocc_kuka.stp", False), ("gmsh_problemSphere.brep", True),
+          ("occt_Top.brep", True)]
+
+
+def read_msh_faces(path):
+    """Per surface entity (face): its triangles as node tags; and the nodes' points by tag."""
+    lines = open(path).read().split("\n")
+    points, i = {}, lines.index("$Nodes") + 2
+    while lines[i] != "$EndNodes":
+        n = int(lines[i].split()[3])
+        tags = [int(t) for t in lines[i + 1:i + 1 + n]]
+        points.update(zip(tags, (tuple(map(float, s.split())) for s in lines[i + 1 + n:i + 1 + 2 * n])))
+        i += 1 + 2 * n
+    faces, i = {}, lines.index("$Elements") + 2
+    while lines[i] != "$EndElements":
+        tag, etype, n = map(int, lines[i].split()[1:4])
+        if etype == 2:
+            faces.setdefault(tag, []).extend(tuple(map(int, s.split()[1:4])) for s in lines[i + 1:i + 1 + n])
+        i += 1 + n
+    return faces, points
 
 
 def read_msh_triangles(path):
-    lines = open(path).read().split("\n")
-    tris, i = [], lines.index("$Elements") + 2
-    while lines[i] != "$EndElements":
-        etype, n = map(int, lines[i].split()[2:4])
-        if etype == 2:
-            tris += [tuple(map(int, s.split()[1:4])) for s in lines[i + 1:i + 1 + n]]
-        i += 1 + n
-    return tris
+    return [t for tris in read_msh_faces(path)[0].values() for t in tris]
 
 
 def check(wefm, path, clean, tmp):
@@ -72,6 +90,25 @@ def check_refused_size(wefm, folder, tmp):
     assert p.returncode == 5 and "--max-elements 100" in p.stderr, (p.returncode, p.stderr)
 
 
+def check_coincident_faces(wefm, path, tmp):
+    """Faces lying on each other get the same mesh (the same triangles, point for point), or their
+    meshes would cross: the run exits 0 and the report names the face whose mesh was used."""
+    msh, rep = os.path.join(tmp, "touching.msh"), os.path.join(tmp, "touching.json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
+    faces, points = read_msh_faces(msh)
+    shapes = {f: {tuple(sorted(tuple(round(c, 9) for c in points[v]) for v in t)) for t in tris} for f, tris in faces.items()}
+    pairs = [(a, b) for a in shapes for b in shapes if a < b and shapes[a] & shapes[b]]
+    assert pairs, "the two prisms have no faces meshed on each other"
+    for a, b in pairs:
+        assert shapes[a] == shapes[b], f"faces {a} and {b} lie on each other but are meshed differently"
+    r = json.load(open(rep))
+    copied = {(f["mesh_of_face"], f["face"]) for f in r["faces"] if f["mesh_of_face"]}
+    assert copied == set(pairs), (copied, pairs)
+    print(f"touching_prisms.brep: faces meshed alike {pairs}")
+
+
 def main():
     wefm, folder = sys.argv[1:3]
     missing = [m for m, _ in MODELS if not os.path.exists(os.path.join(folder, m))]
@@ -82,6 +119,7 @@ def main():
         for m, clean in MODELS:
             check(wefm, os.path.join(folder, m), clean, tmp)
         check_refused_size(wefm, folder, tmp)
+        check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
     return 0
 
 
