@@ -435,7 +435,8 @@ def fortran_interfaces(api):
     if api.callbacks:
         out.append("abstract interface")
         for name, ret, params in api.callbacks:
-            dummies = [fortran_dummy(api, p, "pointer" if p[2] == 1 else "value") for p in params]
+            dummies = [fortran_dummy(api, p, "pointer" if p[2] == 1 else "value") for p in params
+                       if p[2] == 1 or p[1] in TYPES or api.unknown("%s: parameter %s" % (name, p[3]))]
             out += fortran_procedure(name, fortran_result(api, ret, name), dummies, bind=False)
         out += ["end interface", ""]
     out.append("interface")
