@@ -33,6 +33,7 @@
 #include <gp_Vec.hxx>
 
 #include "cad_face_repair.hpp"
+#include "cad_polygon_fill.hpp"
 
 namespace wefm_cad {
 
@@ -108,8 +109,13 @@ class Importer {
     const int n = tri_->NbNodes();
     points_.reserve(static_cast<size_t>(n));
     for (int i = 1; i <= n; ++i) points_.push_back(tri_->Node(i).Transformed(trsf));
+    for (int t = 1; t <= tri_->NbTriangles(); ++t) {
+      int a = 0, b = 0, c = 0;
+      tri_->Triangle(t).Get(a, b, c);
+      facets_.push_back({a - 1, b - 1, c - 1});
+    }
     UnionFind uf(n);
-    if (!collect_loops() || !merge_edges(uf)) return false;
+    if (!collect_loops() || !merge_edges(uf) || !cover_boundary(uf)) return false;
     build_mesh(uf);
     return out_.error.empty();
   }
@@ -187,6 +193,42 @@ class Importer {
     return true;
   }
 
+  // BRepMesh can give up on a face and leave facets that miss its edges' polygons (one facet among
+  // twenty boundary nodes). A face bounded by one loop, without a seam or a pole, is then filled
+  // from that loop in the surface's parameters, where BRepMesh's facets turn counter-clockwise.
+  bool cover_boundary(UnionFind& uf) {
+    std::set<std::pair<int, int>> facet_edges;
+    for (const std::array<int, 3>& t : facets_)
+      for (size_t c = 0; c < 3; ++c) facet_edges.insert(std::minmax(uf.find(t[c]), uf.find(t[(c + 1) % 3])));
+    const CadEdge* missed = nullptr;
+    for (size_t k = 0; k < out_.edges.size() && !missed; ++k)
+      for (size_t i = 0; i + 1 < raw_chains_[k].size() && !missed; ++i) {
+        const int a = uf.find(raw_chains_[k][i]), b = uf.find(raw_chains_[k][i + 1]);
+        if (a != b && !facet_edges.count(std::minmax(a, b))) missed = &out_.edges[k];
+      }
+    if (!missed) return true;
+    const std::string why = "BRepMesh's facets miss the polygon of edge " + std::to_string(missed->id);
+    if (out_.loops.size() != 1 || !tri_->HasUVNodes()) return fail(why + " and the face has more than one loop");
+    std::vector<int> ring;
+    for (const CadEdgeUse& u : out_.loops.front()) {
+      if (out_.edges[static_cast<size_t>(u.edge)].seam || out_.edges[static_cast<size_t>(u.edge)].degenerated)
+        return fail(why + " and the face has a seam or a pole");
+      std::vector<int> chain = raw_chains_[static_cast<size_t>(u.edge)];
+      if (u.reversed) std::reverse(chain.begin(), chain.end());
+      for (int node : chain)
+        if (ring.empty() || uf.find(ring.back()) != uf.find(node)) ring.push_back(node);
+    }
+    if (ring.size() > 1 && uf.find(ring.front()) == uf.find(ring.back())) ring.pop_back();
+    std::vector<std::array<double, 2>> uv;
+    for (int node : ring) uv.push_back({tri_->UVNode(node + 1).X(), tri_->UVNode(node + 1).Y()});
+    const std::vector<std::array<int, 3>> filled = fill_polygon(uv);
+    if (filled.empty()) return fail(why + " and its loop has fewer than 3 nodes");
+    facets_.clear();
+    for (const std::array<int, 3>& t : filled)
+      facets_.push_back({ring[static_cast<size_t>(t[0])], ring[static_cast<size_t>(t[1])], ring[static_cast<size_t>(t[2])]});
+    return true;
+  }
+
   double chain_length(const std::vector<int>& chain) const {
     double length = 0;
     for (size_t i = 0; i + 1 < chain.size(); ++i)
@@ -245,11 +287,9 @@ class Importer {
     const bool flip = face_.Orientation() == TopAbs_REVERSED;
     std::vector<std::array<int, 3>> facets;
     std::map<std::array<int, 3>, std::vector<size_t>> by_corners;
-    for (int t = 1; t <= tri_->NbTriangles(); ++t) {
-      int a = 0, b = 0, c = 0;
-      tri_->Triangle(t).Get(a, b, c);
-      if (flip) std::swap(b, c);  // outward: the triangulation follows the surface normal
-      const std::array<int, 3> r = {uf.find(a - 1), uf.find(b - 1), uf.find(c - 1)};
+    for (std::array<int, 3> f : facets_) {
+      if (flip) std::swap(f[1], f[2]);  // outward: the triangulation follows the surface normal
+      const std::array<int, 3> r = {uf.find(f[0]), uf.find(f[1]), uf.find(f[2])};
       if (r[0] == r[1] || r[1] == r[2] || r[0] == r[2]) {
         ++out_.dropped_triangles;
         continue;
@@ -318,6 +358,7 @@ class Importer {
   std::unordered_map<int, int32_t> local_;  // model edge id -> index in out_.edges
   std::vector<TopoDS_Edge> shapes_;         // per face edge, one of its oriented shapes
   std::vector<std::vector<int>> raw_chains_;
+  std::vector<std::array<int, 3>> facets_;  // 0-based triangulation nodes, BRepMesh's or filled
 };
 
 }  // namespace
