@@ -39,6 +39,15 @@ std::string resolve_target(const std::string& path) {
   return buf;
 }
 
+// The rename is durable once the folder's entry is on disk. Best effort: the file is already whole
+// in place, and some file systems refuse fsync on a folder.
+void sync_directory(const std::string& target) {
+  const int fd = ::open(directory_of(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)fsync(fd);
+  ::close(fd);
+}
+
 }  // namespace
 
 bool OutputFile::fail(const std::string& what, int err) {
@@ -57,9 +66,11 @@ bool OutputFile::open(const std::string& path) {
   if (path.empty()) return fail("empty file name", 0);
   target_ = resolve_target(path);
   struct stat st;
+  bool replaces = false;
   if (stat(target_.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) return fail("is a directory", 0);
     direct_ = !S_ISREG(st.st_mode);
+    replaces = true;
   }
   if (direct_) {
     fd_ = ::open(target_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC | O_NOCTTY);
@@ -77,6 +88,8 @@ bool OutputFile::open(const std::string& path) {
     temp_.clear();
     return fail("cannot create", err);
   }
+  // A file that is replaced keeps its permissions (a read-only-for-others result stays so).
+  if (replaces && fchmod(fd_, st.st_mode & 07777) != 0) return fail("cannot set the permissions of the replacement", errno);
   return true;
 }
 
@@ -120,6 +133,7 @@ bool OutputFile::commit() {
   unregister_temporary(slot_);
   slot_ = -1;
   temp_.clear();
+  if (!direct_) sync_directory(target_);
   return true;
 }
 

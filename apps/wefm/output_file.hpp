@@ -8,6 +8,7 @@
 // A target that exists and is not a regular file (/dev/null, /dev/full, a FIFO) cannot be replaced
 // by rename: it is written in place, still checking every write and the close, so /dev/full fails.
 // A symbolic link to a regular file is followed: the file it names is replaced, the link stays.
+// A replaced file keeps its permission bits; the folder is synced after the rename.
 #include <cstddef>
 #include <string>
 #include <string_view>

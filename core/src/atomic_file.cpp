@@ -34,6 +34,17 @@ std::string temporary_name(const std::string& target) {
   return dir + "/." + name + suffix;
 }
 
+// The rename is durable once the folder's entry is on disk. Best effort: the file is already whole
+// in place, and some file systems refuse fsync on a folder.
+void sync_directory(const std::string& target) {
+  const std::size_t slash = target.rfind('/');
+  const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : target.substr(0, slash);
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)fsync(fd);
+  ::close(fd);
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(const std::string& path) : path_(path), target_(resolve_link(path)) {
@@ -42,6 +53,8 @@ AtomicFile::AtomicFile(const std::string& path) : path_(path), target_(resolve_l
   if (stat(target_.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) fail("is a directory", 0);
     direct_ = !S_ISREG(st.st_mode);
+    replaces_ = true;
+    mode_ = st.st_mode & 07777;
   }
   if (direct_) {
     fd_ = ::open(target_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC | O_NOCTTY);
@@ -53,6 +66,8 @@ AtomicFile::AtomicFile(const std::string& path) : path_(path), target_(resolve_l
     temp_.clear();
     fail("cannot open for writing", errno);
   }
+  // A file that is replaced keeps its permissions (a read-only-for-others result stays so).
+  if (!direct_ && replaces_ && fchmod(fd_, mode_) != 0) fail("cannot set the permissions of the replacement", errno);
 }
 
 AtomicFile::~AtomicFile() {
@@ -81,6 +96,7 @@ void AtomicFile::commit() {
   if (rc != 0) fail("error writing (close)", errno);
   if (!direct_ && std::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot replace the file", errno);
   temp_.clear();
+  if (!direct_) sync_directory(target_);
 }
 
 }  // namespace wefm

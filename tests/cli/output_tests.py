@@ -10,6 +10,7 @@
   signals      SIGINT and SIGTERM at random moments of flatten, mesh and batch: exit 6 or a complete
                run, never a partial output; a second signal ends the process and leaves no temporary
   time_limit   --time-limit: exit 7 with previous outputs kept; bad values are usage errors
+  permissions  a replaced output keeps the permission bits of the file it replaces
 """
 import glob
 import json
@@ -263,7 +264,30 @@ def case_time_limit(tmp):
     check("--time-limit" in h and "7  time limit" in h, "--help does not document --time-limit and exit 7")
 
 
-CASES = dict(full_disk=case_full_disk, collisions=case_collisions, signals=case_signals, time_limit=case_time_limit)
+def case_permissions(tmp):
+    src, V, T = write_patch(tmp)
+    out = os.path.join(tmp, "out", "o.obj")
+    report = os.path.join(tmp, "out", "r.json")
+    for path in (out, report):
+        old_file(path)
+        os.chmod(path, 0o640)
+    run("flatten", src, "-o", out, "--report", report, "-q", expect=0)
+    for path in (out, report):
+        check(content(path) != "OLD CONTENT\n", f"{path} was not replaced")
+        mode = os.stat(path).st_mode & 0o7777
+        check(mode == 0o640, f"{os.path.basename(path)}: mode {oct(mode)} after replacing a 0640 file")
+    fresh = os.path.join(tmp, "out", "fresh.obj")
+    old_mask = os.umask(0o022)
+    try:
+        run("flatten", src, "-o", fresh, "-q", expect=0)
+    finally:
+        os.umask(old_mask)
+    mode = os.stat(fresh).st_mode & 0o7777
+    check(mode == 0o644, f"a new output has mode {oct(mode)} under umask 022")
+
+
+CASES = dict(full_disk=case_full_disk, collisions=case_collisions, signals=case_signals, time_limit=case_time_limit,
+             permissions=case_permissions)
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -106,4 +107,19 @@ TEST_CASE("AtomicFile abandoned before commit leaves the previous file and no te
   }
   CHECK(slurp(target) == "old");
   CHECK(d.entries() == 1);
+}
+
+TEST_CASE("AtomicFile: a replaced file keeps its permission bits; a new file gets the umask's") {
+  TempDir d;
+  const fs::path target = d.path / "out.obj";
+  spit(target, "old");
+  fs::permissions(target, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);  // 0640
+  CHECK(code_of(target.string(), "new") == wefm::Errc{});
+  CHECK(slurp(target) == "new");
+  CHECK(fs::status(target).permissions() == (fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read));
+  const mode_t old_mask = umask(022);
+  const fs::path fresh = d.path / "fresh.obj";
+  CHECK(code_of(fresh.string(), "x") == wefm::Errc{});
+  umask(old_mask);
+  CHECK(fs::status(fresh).permissions() == (fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read));
 }

@@ -5,6 +5,8 @@
  * wefm flattens a 3D triangulated surface (a "facetted face") into a low-distortion 2D domain,
  * meshes that domain and maps the mesh back to 3D. Link libwefm (CMake: find_package(wefm),
  * target wefm::wefm; pkg-config: wefm). The API reference is built from this file (docs/Doxyfile).
+ * The Python and Fortran declarations are generated from it: after changing a declaration, run
+ * `python3 scripts/gen_bindings.py` (ctest bindings.generated_current fails until the output is current).
  *
  * The function comments below name only the errors particular to each function; the ones every
  * function shares (NULL arguments, buffer sizes, exhausted memory) are in the conventions.

@@ -4,7 +4,8 @@
 // the fsync and the close are checked, and rename() puts it in place. On any failure the temporary
 // is removed and the previous file stays as it was. A target that exists and is not a regular file
 // (/dev/null, /dev/full, a FIFO) cannot be replaced: it is written in place, every write and the
-// close still checked. A symbolic link to a regular file is followed (the link stays).
+// close still checked. A symbolic link to a regular file is followed (the link stays). A replaced
+// file keeps its permission bits; the folder is synced after the rename.
 #include <cstddef>
 #include <string>
 
@@ -26,6 +27,8 @@ class AtomicFile {
   std::string path_, target_, temp_;
   int fd_ = -1;
   bool direct_ = false;
+  bool replaces_ = false;  // the target exists: its permissions carry over
+  unsigned mode_ = 0;
 };
 
 }  // namespace wefm
