@@ -640,6 +640,10 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   int64_t collapsed = 0;
   for (const FaceMeshRun& r : runs)
     if (!r.tris.empty()) collapsed += whole.add_face(r.face->index, r.xyz, r.tris);
+  std::set<std::pair<int, int>> alike;
+  for (const FaceMeshRun& r : runs)
+    if (r.copy_of) alike.insert({r.copy_of, r.face->index});
+  collapsed += whole.drop_fins(alike);
   // Each model edge is used once per edge use in the faces' loops (a seam twice by its face).
   std::map<long long, int> face_uses;
   for (const wefm_cad::CadFace& f : model.faces)

@@ -74,6 +74,7 @@ int32_t ModelMesh::weld(const double* p, int face_tag) {
   const int32_t id = static_cast<int32_t>(xyz_.size() / 3);
   xyz_.insert(xyz_.end(), p, p + 3);
   node_face_.push_back(face_tag);
+  welded_.push_back(1);
   grid_.add(p, id);
   return id;
 }
@@ -89,11 +90,65 @@ void ModelMesh::note_defect(ConformityCounts& out, uint64_t key, int uses, int e
 void ModelMesh::expect_model_edge(const std::vector<double>& nodes, int face_uses) {
   // A node no face mesh holds (its faces failed) leaves its segments undeclared: their absence is
   // then counted where the faces' other edges are, not here.
-  for (size_t k = 0; k + 5 < nodes.size(); k += 3) {
-    const int32_t a = find(&nodes[k]), b = find(&nodes[k + 3]);
-    if (a < 0 || b < 0 || a == b) continue;
-    expected_uses_[pair_key(a, b)] += face_uses;
+  // A kink node drop_fins took off the mesh is passed over: the edge runs along the chord there.
+  // Never an end node: a model vertex left out of the mesh is a gap.
+  const size_t n = nodes.size() / 3;
+  int32_t prev = -1;
+  for (size_t k = 0; k < n; ++k) {
+    const int32_t b = find(&nodes[3 * k]);
+    if (b >= 0 && k > 0 && k + 1 < n && fin_nodes_.count(b)) continue;
+    if (prev >= 0 && b >= 0 && prev != b) expected_uses_[pair_key(prev, b)] += face_uses;
+    prev = b;
   }
+}
+
+int64_t ModelMesh::drop_fins(const std::set<std::pair<int, int>>& alike) {
+  std::unordered_map<uint64_t, int> uses;
+  std::vector<int> node_tris(xyz_.size() / 3, 0);
+  std::map<std::array<int32_t, 3>, std::vector<size_t>> on_boundary;  // welded corners -> triangles
+  for (size_t t = 0; t + 2 < tris_.size(); t += 3) {
+    for (int c = 0; c < 3; ++c) {
+      ++uses[pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])];
+      ++node_tris[static_cast<size_t>(tris_[t + static_cast<size_t>(c)])];
+    }
+    if (welded_[static_cast<size_t>(tris_[t])] && welded_[static_cast<size_t>(tris_[t + 1])] && welded_[static_cast<size_t>(tris_[t + 2])]) {
+      std::array<int32_t, 3> key{tris_[t], tris_[t + 1], tris_[t + 2]};
+      std::sort(key.begin(), key.end());
+      on_boundary[key].push_back(t / 3);
+    }
+  }
+  std::vector<char> drop(tri_face_.size(), 0);
+  int64_t dropped = 0;
+  for (const auto& [key, list] : on_boundary) {
+    if (list.size() != 2) continue;
+    const int f = tri_face_[list[0]], g = tri_face_[list[1]];
+    if (f == g || alike.count({f, g}) || alike.count({g, f})) continue;
+    // Once each way: the second triangle's corners run backwards through the first's.
+    const int32_t* t0 = &tris_[3 * list[0]];
+    const int32_t* t1 = &tris_[3 * list[1]];
+    const int at = static_cast<int>(std::find(t1, t1 + 3, t0[0]) - t1);
+    if (t1[(at + 2) % 3] != t0[1]) continue;
+    // The kink: a corner on these two triangles only, its two edges on nothing else.
+    for (int c = 0; c < 3; ++c) {
+      const int32_t b = key[static_cast<size_t>(c)], x = key[static_cast<size_t>((c + 1) % 3)], y = key[static_cast<size_t>((c + 2) % 3)];
+      if (node_tris[static_cast<size_t>(b)] != 2 || uses[pair_key(b, x)] != 2 || uses[pair_key(b, y)] != 2) continue;
+      drop[list[0]] = drop[list[1]] = 1;
+      fin_nodes_.insert(b);
+      dropped += 2;
+      break;
+    }
+  }
+  if (!dropped) return 0;
+  std::vector<int32_t> tris;
+  std::vector<int> faces;
+  for (size_t t = 0; t < tri_face_.size(); ++t)
+    if (!drop[t]) {
+      tris.insert(tris.end(), &tris_[3 * t], &tris_[3 * t] + 3);
+      faces.push_back(tri_face_[t]);
+    }
+  tris_ = std::move(tris);
+  tri_face_ = std::move(faces);
+  return dropped;
 }
 
 std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int32_t>& triangles) {
@@ -117,6 +172,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
       global[v] = static_cast<int32_t>(xyz_.size() / 3);
       xyz_.insert(xyz_.end(), &xyz[3 * v], &xyz[3 * v] + 3);
       node_face_.push_back(face_tag);
+      welded_.push_back(0);
     }
   }
   // Welding can also turn two triangles that touch both sides of a seam near its degenerate end into

@@ -6,6 +6,7 @@
 // welded, so two faces that merely come close are not stitched together.
 #include <array>
 #include <cstdint>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -62,6 +63,14 @@ class ModelMesh {
   // three nodes (near the end of a seam).
   int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
 
+  // Two faces meeting at a sharp kink of their common edge can each close it with the same triangle
+  // (three consecutive nodes of the edge for corners), once each way: a fin of no volume, the kink's
+  // node on nothing else. Both are dropped, the faces then meet along the chord, and the kink's node
+  // is left out of its edge (expect_model_edge). Faces meshed alike (`alike`: pairs of face tags)
+  // keep theirs. Call after the faces are added, before the model edges are declared. Returns the
+  // triangles dropped.
+  int64_t drop_fins(const std::set<std::pair<int, int>>& alike);
+
   // Declares a model edge: its nodes (3 doubles each, in order, as every face was given them) and how
   // many face uses it has in the B-rep. Call after the faces are added; conformity() then checks the
   // mesh against it.
@@ -88,6 +97,8 @@ class ModelMesh {
 
   std::vector<double> xyz_;
   std::vector<int> node_face_;          // face that first contributed the node (its MSH entity)
+  std::vector<char> welded_;            // per node: on a face mesh's boundary, welded across faces
+  std::set<int32_t> fin_nodes_;         // the kink nodes drop_fins left on no triangle
   std::vector<int32_t> tris_;
   std::vector<int> tri_face_;
   std::vector<int> face_tags_;          // in order of addition

@@ -6,7 +6,8 @@ Each model here once broke a property of issue 28: a face the flattener gives a 
 cones of gmsh_Solid_56) was refused; a refinement cascade hung on occt_MODERN_Chair_1 f135 and left
 zero-area triangles on gmsh_1385_Laufrad_1000; nodeocc_kuka crashed the process; a face broke its
 boundary at a kink inside a model edge, a node the neighbouring face did not have (occt_Top: a crack),
-and on a seam a segment the checker then missed (gmsh_problemSphere). For each: no crash, an exit code
+and on a seam a segment the checker then missed (gmsh_problemSphere); two faces closed a kink of
+their common edge with the same triangle, a fin (nist_ctc_02). For each: no crash, an exit code
 that tells the truth about the mesh (0 only when every face is meshed and every edge is used as the
 B-rep says), and where it is 0, no zero-area triangle and a sound lambda.
 
@@ -26,7 +27,7 @@ from collections import Counter
 # (model, must be clean): clean = exit 0, every face meshed, every edge as the B-rep says.
 MODELS = [("gmsh_Solid_56.step", True), ("occt_MODERN_Chair_1.brep", True), ("gmsh_1385_Laufrad_1000.stp", True),
           ("gmsh_cube_filet.stp", True), ("nodeocc_kuka.stp", False), ("gmsh_problemSphere.brep", True),
-          ("occt_Top.brep", True)]
+          ("occt_Top.brep", True), ("nist_ctc_02_asme1_ap203.stp", True)]
 
 
 def read_msh_faces(path):
