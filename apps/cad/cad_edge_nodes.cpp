@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <unordered_map>
 
@@ -14,6 +15,20 @@ namespace {
 // The smallest local size a narrow face gets, as a fraction of h: a face narrower than h / 8 keeps
 // slivers (a needle face cannot ask for millions of elements along its long edges).
 constexpr double kNarrowestFraction = 8;
+// Segments along a strip of width w at this many w have Lo lambda about 0.6 across it (0.87 at 1 w,
+// 0.33 at 5 w): a narrow face or part of a face is meshed at this many times its width.
+constexpr double kWidthFactor = 2.5;
+// Edge segments shrink towards a narrow part of a face down to h / this: a local narrowing costs a
+// few segments (they grow back by g per unit length), a face that is a needle all along its length
+// keeps slivers.
+constexpr double kNarrowestEdgeFraction = 128;
+// A face at least this many times its smaller radius of curvature wide (2 area / perimeter) wraps
+// round it: a tube of radius r is about 2 pi r wide, a long half tube pi r, a quarter-round fillet
+// about 1.6 r. A short half tube is narrow too: it wraps by its normals (turns_little).
+constexpr double kWrapWidth = 2;
+// A face whose facet normals all lie within this angle of their mean turns less than about 120
+// degrees (a quarter-round fillet along a line turns 90).
+constexpr double kLittleTurn = 60 * 3.14159265358979 / 180;
 // The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
 constexpr double kSmallestRadiusFraction = 8;
 
@@ -21,28 +36,17 @@ double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
-// Arc-length size along an edge of length L: h inside, growing by `g` per unit length from the
-// segment sizes s0 and s1 wanted at its two ends, min(h, s0 + g s, s1 + g (L - s)). Nodes sit at
+// A size along an edge, piecewise linear in arc length between samples (s_k, v_k). Nodes sit at
 // equal steps of the integral of 1 / size, which is closed-form on each linear piece.
-class GradedSize {
+class SampledSize {
  public:
-  GradedSize(double length, double h, double s0, double s1, double g) : L_(length) {
-    std::vector<double> cuts{0.0, length};
-    if (g > 0) {
-      for (double c : {(h - s0) / g, length - (h - s1) / g, (s1 - s0 + g * length) / (2 * g)})
-        if (c > 0 && c < length) cuts.push_back(c);
-    }
-    std::sort(cuts.begin(), cuts.end());
+  SampledSize(const std::vector<double>& s, const std::vector<double>& v) : L_(s.back()) {
     double phi = 0;
-    for (size_t k = 0; k + 1 < cuts.size(); ++k) {
-      const double a = cuts[k], b = cuts[k + 1];
-      if (!(b > a)) continue;
-      const double mid = 0.5 * (a + b);
-      // The piece that is the minimum on [a, b]: size = c0 + c1 (s - a).
-      Piece p{a, b, phi, h, 0.0};
-      if (g > 0 && s0 + g * mid < p.c0) p.c0 = s0 + g * a, p.c1 = g;
-      if (g > 0 && s1 + g * (length - mid) < p.c0 + p.c1 * (mid - a)) p.c0 = s1 + g * (length - a), p.c1 = -g;
-      phi += p.integral(b);
+    for (size_t k = 0; k + 1 < s.size(); ++k) {
+      if (!(s[k + 1] > s[k])) continue;
+      Piece p{s[k], s[k + 1], phi, v[k], (v[k + 1] - v[k]) / (s[k + 1] - s[k])};
+      if (std::fabs(p.c1) < 1e-12) p.c1 = 0;
+      phi += p.integral(p.b);
       pieces_.push_back(p);
     }
     total_ = phi;
@@ -70,6 +74,13 @@ class GradedSize {
   std::vector<Piece> pieces_;
 };
 
+// Sizes at samples no faster-growing than g per unit length in either direction (the smallest
+// function above which nothing is, with slope at most g): two sweeps along the samples.
+void grade(const std::vector<double>& s, std::vector<double>& v, double g) {
+  for (size_t k = 1; k < s.size(); ++k) v[k] = std::min(v[k], v[k - 1] + g * (s[k] - s[k - 1]));
+  for (size_t k = s.size() - 1; k-- > 0;) v[k] = std::min(v[k], v[k + 1] + g * (s[k + 1] - s[k]));
+}
+
 // Nodes at the given arc lengths (sorted, first 0, last the full length) along the edge's chain.
 EdgeNodes place(const CadFace& face, const CadEdge& edge, const std::vector<double>& targets) {
   const size_t m = edge.vertices.size();
@@ -89,6 +100,189 @@ EdgeNodes place(const CadFace& face, const CadEdge& edge, const std::vector<doub
   }
   out.xyz.insert(out.xyz.end(), p[m - 1], p[m - 1] + 3);
   return out;
+}
+
+// A model edge's wanted size at sample arc lengths along its chain.
+struct SizeProfile {
+  std::vector<double> s, v;
+};
+
+// The arc lengths of a chain's vertices.
+std::vector<double> chain_arcs(const CadFace& f, const CadEdge& e) {
+  std::vector<double> s(e.vertices.size(), 0.0);
+  for (size_t i = 1; i < s.size(); ++i)
+    s[i] = s[i - 1] + distance(&f.xyz[3 * static_cast<size_t>(e.vertices[i - 1])], &f.xyz[3 * static_cast<size_t>(e.vertices[i])]);
+  return s;
+}
+
+// The chain's vertices and points between them no more than `step` apart, as arc lengths.
+std::vector<double> sample_arcs(const std::vector<double>& chain, double step) {
+  std::vector<double> out{0.0};
+  for (size_t i = 1; i < chain.size(); ++i) {
+    const double a = chain[i - 1], b = chain[i];
+    const auto n = std::isfinite(step) && step > 0 ? static_cast<long long>(std::min(1e4, std::ceil((b - a) / step))) : 1LL;
+    for (long long k = 1; k <= n; ++k) out.push_back(a + (b - a) * static_cast<double>(k) / static_cast<double>(std::max(1LL, n)));
+  }
+  return out;
+}
+
+// The point at arc length `s` along a chain with arc lengths `arcs`.
+std::array<double, 3> point_at(const CadFace& f, const CadEdge& e, const std::vector<double>& arcs, double s) {
+  const size_t hi = static_cast<size_t>(std::upper_bound(arcs.begin(), arcs.end(), s) - arcs.begin());
+  const size_t i = std::clamp<size_t>(hi, 1, arcs.size() - 1);
+  const double* a = &f.xyz[3 * static_cast<size_t>(e.vertices[i - 1])];
+  const double* b = &f.xyz[3 * static_cast<size_t>(e.vertices[i])];
+  const double len = arcs[i] - arcs[i - 1];
+  const double t = len > 0 ? std::clamp((s - arcs[i - 1]) / len, 0.0, 1.0) : 0.0;
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
+// An edge's segments at most its radius of curvature (about six to a full turn, three to a half
+// circle: two segments on a half circle put a chord through the axis that the other half's mesh may
+// use too), down to `floor`. The radius at a chain vertex is the mean of its two chain segments over
+// the angle between them; a sample gets the smaller of the radii at the ends of its chain segment.
+void lower_by_turning(const CadFace& f, const CadEdge& e, double floor, SizeProfile& p) {
+  const size_t m = e.vertices.size();
+  if (m < 3) return;
+  auto at = [&](size_t i) { return &f.xyz[3 * static_cast<size_t>(e.vertices[i])]; };
+  const bool closed = e.vertices.front() == e.vertices.back();
+  std::vector<double> radius(m, std::numeric_limits<double>::infinity());
+  auto turning = [&](size_t i0, size_t i1, size_t i2) {
+    const double *a = at(i0), *b = at(i1), *c = at(i2);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(lu > 0) || !(lv > 0)) return std::numeric_limits<double>::infinity();
+    const double angle = std::acos(std::clamp((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv), -1.0, 1.0));
+    return angle > 1e-3 ? 0.5 * (lu + lv) / angle : std::numeric_limits<double>::infinity();
+  };
+  for (size_t i = 1; i + 1 < m; ++i) radius[i] = turning(i - 1, i, i + 1);
+  if (closed) radius[0] = radius[m - 1] = turning(m - 2, 0, 1);
+  else radius[0] = radius[1], radius[m - 1] = radius[m - 2];
+  const std::vector<double> arcs = chain_arcs(f, e);
+  for (size_t k = 0, i = 1; k < p.s.size(); ++k) {
+    while (i + 1 < m && arcs[i] < p.s[k]) ++i;
+    const double r = std::min(radius[i - 1], radius[i]);
+    if (std::isfinite(r)) p.v[k] = std::min(p.v[k], std::max(floor, r));
+  }
+}
+
+// Two boundary points nearer each other than this fraction of the way round the loop between them
+// face each other across the face: a strip narrower than the edge's segments, or a corner sharper
+// than about 20 degrees. Points just round a blunter corner do not.
+constexpr double kAcrossRatio = 0.35;
+
+// The width of the face at each sample of its edges, reported to `width_at`: the distance from a
+// sample to the nearest point of another edge of the face that lies across the face from it (on
+// another loop, or far round the same loop compared with the distance, and each on the face's side
+// of the other). Widths above `reach` do
+// not matter and are not searched for.
+void lower_by_width(const CadFace& f, double reach, const std::function<void(long long, size_t, double)>& width_at,
+                    const std::map<long long, SizeProfile>& profiles) {
+  struct Use {
+    size_t loop;
+    double offset;
+    bool reversed;
+  };
+  const size_t ne = f.edges.size();
+  std::vector<std::vector<double>> arcs(ne);
+  std::vector<std::vector<Use>> uses(ne);
+  std::vector<double> loop_length;
+  for (size_t e = 0; e < ne; ++e)
+    if (!f.edges[e].degenerated && f.edges[e].vertices.size() >= 2) arcs[e] = chain_arcs(f, f.edges[e]);
+  for (const auto& loop : f.loops) {
+    double offset = 0;
+    for (const CadEdgeUse& u : loop) {
+      const auto e = static_cast<size_t>(u.edge);
+      if (e >= ne || arcs[e].empty()) continue;
+      uses[e].push_back({loop_length.size(), offset, u.reversed});
+      offset += arcs[e].back();
+    }
+    loop_length.push_back(offset);
+  }
+  // Per boundary segment (chain vertex i to i + 1 of an edge), the facet corner across it: the
+  // face lies on that side. Unknown (the vertex itself) on a seam, whose segments have facets on
+  // both sides.
+  std::unordered_map<unsigned long long, int32_t> opposite;
+  auto key = [](int32_t a, int32_t b) {
+    return static_cast<unsigned long long>(static_cast<uint32_t>(std::min(a, b))) << 32 | static_cast<uint32_t>(std::max(a, b));
+  };
+  for (size_t t = 0; t + 2 < f.triangles.size(); t += 3)
+    for (size_t c = 0; c < 3; ++c) {
+      const auto [it, fresh] = opposite.emplace(key(f.triangles[t + c], f.triangles[t + (c + 1) % 3]), f.triangles[t + (c + 2) % 3]);
+      if (!fresh) it->second = -1;
+    }
+  // Whether x lies on the face's side of segment i of edge e (on its line counts as on that side).
+  auto inward = [&](size_t e, size_t i, const double* x) {
+    const CadEdge& ed = f.edges[e];
+    const auto it = opposite.find(key(ed.vertices[i], ed.vertices[i + 1]));
+    if (it == opposite.end() || it->second < 0) return true;
+    const double* a = &f.xyz[3 * static_cast<size_t>(ed.vertices[i])];
+    const double* b = &f.xyz[3 * static_cast<size_t>(ed.vertices[i + 1])];
+    const double* o = &f.xyz[3 * static_cast<size_t>(it->second)];
+    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double in[3] = {o[0] - a[0], o[1] - a[1], o[2] - a[2]};
+    const double t = dd > 0 ? (in[0] * d[0] + in[1] * d[1] + in[2] * d[2]) / dd : 0.0;
+    for (int c = 0; c < 3; ++c) in[c] -= t * d[c];
+    return (x[0] - a[0]) * in[0] + (x[1] - a[1]) * in[1] + (x[2] - a[2]) * in[2] >= 0;
+  };
+  // Per edge, its box grown by `reach`: most edges are too far from a sample to look at.
+  std::vector<std::array<double, 6>> box(ne, {1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
+  for (size_t e = 0; e < ne; ++e)
+    for (int32_t v : f.edges[e].vertices)
+      for (int c = 0; c < 3; ++c) {
+        box[e][c] = std::min(box[e][c], f.xyz[3 * static_cast<size_t>(v) + c] - reach);
+        box[e][c + 3] = std::max(box[e][c + 3], f.xyz[3 * static_cast<size_t>(v) + c] + reach);
+      }
+  // Of all ways round the loops between arc sp on edge a and arc sq on edge b, the shortest
+  // (infinite between different loops).
+  auto round_loop = [&](size_t a, double sp, size_t b, double sq) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Use& ua : uses[a])
+      for (const Use& ub : uses[b]) {
+        if (ua.loop != ub.loop) continue;
+        const double pa = ua.offset + (ua.reversed ? arcs[a].back() - sp : sp);
+        const double pb = ub.offset + (ub.reversed ? arcs[b].back() - sq : sq);
+        const double d = std::fabs(pa - pb);
+        best = std::min({best, d, loop_length[ua.loop] - d});
+      }
+    return best;
+  };
+  for (size_t a = 0; a < ne; ++a) {
+    const auto it = profiles.find(f.edges[a].id);
+    if (arcs[a].empty() || uses[a].empty() || it == profiles.end()) continue;
+    const std::vector<double>& samples = it->second.s;
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const auto p = point_at(f, f.edges[a], arcs[a], samples[k]);
+      // The segment of edge a that the sample lies on.
+      const size_t ia = std::min<size_t>(arcs[a].size() - 2,
+                                         static_cast<size_t>(std::max<std::ptrdiff_t>(0, std::upper_bound(arcs[a].begin(), arcs[a].end(), samples[k]) - arcs[a].begin() - 1)));
+      double width = reach;
+      for (size_t b = 0; b < ne; ++b) {
+        if (b == a || arcs[b].empty() || uses[b].empty() || f.edges[b].id == f.edges[a].id) continue;
+        if (p[0] < box[b][0] || p[1] < box[b][1] || p[2] < box[b][2] || p[0] > box[b][3] || p[1] > box[b][4] || p[2] > box[b][5]) continue;
+        const CadEdge& eb = f.edges[b];
+        for (size_t i = 0; i + 1 < eb.vertices.size(); ++i) {
+          const double* q0 = &f.xyz[3 * static_cast<size_t>(eb.vertices[i])];
+          const double* q1 = &f.xyz[3 * static_cast<size_t>(eb.vertices[i + 1])];
+          const double d[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]};
+          const double w[3] = {p[0] - q0[0], p[1] - q0[1], p[2] - q0[2]};
+          const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+          const double t = dd > 0 ? std::clamp((d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / dd, 0.0, 1.0) : 0.0;
+          const double x[3] = {w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]};
+          const double dist = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+          if (dist >= width) continue;
+          const double sq = arcs[b][i] + t * (arcs[b][i + 1] - arcs[b][i]);
+          // Across the face, not across a hole or round the outside: each point on the face's
+          // side of the other's segment.
+          const double qx[3] = {q0[0] + t * d[0], q0[1] + t * d[1], q0[2] + t * d[2]};
+          if (!inward(a, ia, qx) || !inward(b, i, p.data())) continue;
+          if (dist < kAcrossRatio * round_loop(a, samples[k], b, sq)) width = dist;
+        }
+      }
+      if (width < reach) width_at(f.edges[a].id, k, width);
+    }
+  }
 }
 
 long long uniform_count(double length, double h, bool closed) { return std::max<long long>(closed ? 3 : 1, std::llround(length / h)); }
@@ -126,6 +320,58 @@ class VertexIds {
   std::vector<std::array<double, 3>> pts_;
   std::unordered_multimap<unsigned long long, int> cells_;
 };
+
+// A model edge as the chain of the first face that has it, with its size and end vertices.
+struct Chain {
+  const CadFace* face;
+  const CadEdge* edge;
+  double length, size;
+  bool closed;
+  int v0, v1;
+};
+
+// The arc lengths of each edge's nodes with local sizes: each edge's size (`Chain::size`) lowered
+// where a face that has it is narrower than its segments (kWidthFactor x the width across, down to
+// h / kNarrowestEdgeFraction) and at each model vertex to the smallest segment of the edges meeting
+// there, then graded by g per unit length away from those.
+std::map<long long, std::vector<double>> graded_targets(const CadModel& model, double h, const std::map<long long, Chain>& chains,
+                                                        size_t n_vertices, double g) {
+  std::map<long long, SizeProfile> profiles;
+  for (const auto& [id, c] : chains) {
+    SizeProfile p;
+    p.s = sample_arcs(chain_arcs(*c.face, *c.edge), h / 4);
+    p.v.assign(p.s.size(), c.size);
+    lower_by_turning(*c.face, *c.edge, h / kSmallestRadiusFraction, p);
+    profiles.emplace(id, std::move(p));
+  }
+  const double floor = h / kNarrowestEdgeFraction;
+  auto lower = [&](long long id, size_t k, double width) {
+    double& v = profiles.at(id).v[k];
+    v = std::min(v, std::max(floor, kWidthFactor * width));
+  };
+  for (const CadFace& f : model.faces)
+    if (f.error.empty()) lower_by_width(f, h / kWidthFactor, lower, profiles);
+  std::vector<double> vertex_size(n_vertices, 1e300);
+  for (auto& [id, p] : profiles) {
+    const Chain& c = chains.at(id);
+    grade(p.s, p.v, g);
+    const double u = c.length / static_cast<double>(uniform_count(c.length, c.size, c.closed));
+    for (auto [v, end] : {std::pair<int, double>{c.v0, p.v.front()}, {c.v1, p.v.back()}})
+      vertex_size[static_cast<size_t>(v)] = std::min({vertex_size[static_cast<size_t>(v)], u, end});
+  }
+  std::map<long long, std::vector<double>> out;
+  for (auto& [id, p] : profiles) {
+    const Chain& c = chains.at(id);
+    p.v.front() = std::min(p.v.front(), vertex_size[static_cast<size_t>(c.v0)]);
+    p.v.back() = std::min(p.v.back(), vertex_size[static_cast<size_t>(c.v1)]);
+    grade(p.s, p.v, g);
+    const SampledSize sz(p.s, p.v);
+    const long long n = std::max<long long>(c.closed ? 3 : 1, std::llround(sz.total()));
+    std::vector<double>& t = out[id];
+    for (long long k = 0; k <= n; ++k) t.push_back(sz.inverse(sz.total() * static_cast<double>(k) / static_cast<double>(n)));
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -182,6 +428,30 @@ double curvature_radius(const CadFace& f) {
   return radii[q];
 }
 
+// Whether all the face's facet normals lie within kLittleTurn of their area-weighted mean: a fillet
+// along a line does, a half tube, a fillet round a hole or a sphere does not.
+bool turns_little(const CadFace& f) {
+  std::vector<std::array<double, 3>> normals;
+  std::array<double, 3> mean{0, 0, 0};
+  for (size_t t = 0; t + 2 < f.triangles.size(); t += 3) {
+    const double* a = &f.xyz[3 * static_cast<size_t>(f.triangles[t])];
+    const double* b = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 1])];
+    const double* c = &f.xyz[3 * static_cast<size_t>(f.triangles[t + 2])];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const std::array<double, 3> m{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    for (int k = 0; k < 3; ++k) mean[k] += m[k];  // the cross product's length is twice the area
+    normals.push_back(m);
+  }
+  const double lm = std::sqrt(mean[0] * mean[0] + mean[1] * mean[1] + mean[2] * mean[2]);
+  if (!(lm > 0)) return false;
+  const double cos_limit = std::cos(kLittleTurn);
+  for (const auto& n : normals) {
+    const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (ln > 0 && (n[0] * mean[0] + n[1] * mean[1] + n[2] * mean[2]) < cos_limit * ln * lm) return false;
+  }
+  return true;
+}
+
 double face_area(const CadFace& f) {
   double area = 0;
   for (size_t t = 0; t + 2 < f.triangles.size(); t += 3) {
@@ -204,12 +474,19 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
     for (const auto& loop : f.loops)
       for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
-    // A curved face gets at least about six segments around a full turn (a hexagon's side is its
-    // radius): coarser, the chords of a thin tube or a small hole fold onto each other.
-    // Curvature may ask for smaller elements than narrowness: a small hole needs its six segments
-    // around whatever its length, while a long narrow strip cannot ask for millions along it.
-    const double width = perimeter > 0 ? std::max(2 * area / perimeter, h / kNarrowestFraction) : h;
-    sizes[k] = std::clamp(std::min(width, curvature_radius(f)), h / kSmallestRadiusFraction, h);
+    const double width = perimeter > 0 ? 2 * area / perimeter : h;
+    // A face that wraps round its smaller radius r (a tube, a sphere) gets about six segments
+    // around a full turn (a hexagon's side is its radius): coarser, the chords of a thin tube fold
+    // onto each other. A face that turns less (a fillet, a blend) gets sqrt(r h): its chords then
+    // deviate from it by at most h / 8, as an element of size h does on a face of radius h; r there
+    // multiplied the triangles of filleted models several times over for no better shape. Small
+    // holes keep their six segments through their closed edges (discretise_model_edges).
+    // Curvature may ask for smaller elements than narrowness: a tube needs its six segments around
+    // whatever its length, while a long narrow strip cannot ask for millions along it.
+    const double r = curvature_radius(f);
+    const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
+    const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
+    sizes[k] = std::clamp(std::min(narrow, curved), h / kSmallestRadiusFraction, h);
   }
   return sizes;
 }
@@ -225,13 +502,6 @@ std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, dou
     }
   }
   // Each edge once, from the first face that has it.
-  struct Chain {
-    const CadFace* face;
-    const CadEdge* edge;
-    double length, size;
-    bool closed;
-    int v0, v1;
-  };
   std::map<long long, Chain> chains;
   VertexIds vertices(1e-7 * model.bbox_diagonal);
   for (const CadFace& f : model.faces) {
@@ -243,26 +513,17 @@ std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, dou
       chains.emplace(e.id, Chain{&f, &e, chain_length(f, e), edge_size.at(e.id), e.vertices.front() == e.vertices.back(), v0, v1});
     }
   }
-  // At each model vertex, the shortest uniform segment of the edges meeting there: every edge
-  // grades down to it, so a short edge does not end next to a segment many times its length.
-  std::vector<double> vertex_size(vertices.size(), 1e300);
-  for (const auto& [id, c] : chains) {
-    const double u = c.length / static_cast<double>(uniform_count(c.length, c.size, c.closed));
-    for (int v : {c.v0, c.v1}) vertex_size[static_cast<size_t>(v)] = std::min(vertex_size[static_cast<size_t>(v)], u);
+  std::map<long long, std::vector<double>> targets;
+  if (gradation > 0) {
+    targets = graded_targets(model, h, chains, vertices.size(), gradation);
+  } else {
+    for (const auto& [id, c] : chains) {
+      const long long n = uniform_count(c.length, c.size, c.closed);
+      for (long long k = 0; k <= n; ++k) targets[id].push_back(c.length * static_cast<double>(k) / static_cast<double>(n));
+    }
   }
   std::map<long long, EdgeNodes> nodes;
-  for (const auto& [id, c] : chains) {
-    std::vector<double> targets;
-    if (gradation > 0) {
-      const GradedSize sz(c.length, c.size, vertex_size[static_cast<size_t>(c.v0)], vertex_size[static_cast<size_t>(c.v1)], gradation);
-      const long long n = std::max<long long>(c.closed ? 3 : 1, std::llround(sz.total()));
-      for (long long k = 0; k <= n; ++k) targets.push_back(sz.inverse(sz.total() * static_cast<double>(k) / static_cast<double>(n)));
-    } else {
-      const long long n = uniform_count(c.length, c.size, c.closed);
-      for (long long k = 0; k <= n; ++k) targets.push_back(c.length * static_cast<double>(k) / static_cast<double>(n));
-    }
-    nodes.emplace(id, place(*c.face, *c.edge, targets));
-  }
+  for (const auto& [id, c] : chains) nodes.emplace(id, place(*c.face, *c.edge, targets.at(id)));
   return nodes;
 }
 

@@ -15,12 +15,12 @@ struct EdgeNodes {
   std::vector<double> xyz;  // 3 per node, in the edge's direction, both end vertices included
 };
 
-// Local size per face (by CadModel::faces index): a face narrower than h gets its width, so it has
-// about one element across instead of elements stretched over it. Width = 2 area / perimeter (the
-// width of a long strip, the radius of a disk). Floored at h / 4: a needle face cannot ask for
-// millions of elements along its long edges, and the faces next to a narrow face (meshed at h
-// inside) grade down at most 4:1 along the shared edge; at 16:1 they came out worse than with no
-// local size at all (Ball.brep).
+// Local size per face (by CadModel::faces index): a face narrower than h gets 2.5 times its width
+// (Lo lambda about 0.6 on the triangles across it, instead of elements stretched over it), a
+// curved face at most its smaller radius of curvature. Width = 2 area / perimeter (the width of a
+// long strip, the radius of a disk). Floored at h / 8: a needle face cannot ask for millions of
+// elements along its long edges. A face narrow only in part is left to the edges' local sizes
+// (discretise_model_edges).
 std::vector<double> local_face_sizes(const CadModel& model, double h);
 
 // The area of a face's tessellation.
@@ -28,9 +28,11 @@ double face_area(const CadFace& face);
 
 // Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
-// empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments of
-// an edge shrink towards a model vertex where another edge has shorter ones, growing back by g per
-// unit length (1 + g per segment, roughly); 0 keeps them uniform.
+// empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments also
+// shrink where a face that has the edge is narrower than them (a strip, a slot, a corner sharper
+// than about 20 degrees: 2.5 times the width across, down to h / 32) and towards a model vertex
+// where another edge has shorter ones, growing back by g per unit length (1 + g per segment,
+// roughly); 0 keeps them uniform.
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h,
                                                       const std::vector<double>& face_sizes = {}, double gradation = 0);
 

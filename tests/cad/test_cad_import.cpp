@@ -14,9 +14,12 @@
 #include <string>
 #include <vector>
 
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
 #include <IGESControl_Controller.hxx>
@@ -261,16 +264,17 @@ TEST_CASE("IGES and BREP cylinders import like the STEP one") {
 
 TEST_CASE("model edges are discretised once: nodes on the chain, closed edges at least a triangle, local sizes") {
   const wefm_cad::CadModel m = load(WEFM_TEST_DATA "/cylinder.step");
-  // Local size = 2 area / perimeter, and on a curved face at most its radius of curvature: the
-  // disks (r = 10) get their radius as width; the lateral face (2 pi 10 x 25, perimeter
-  // 2 (2 pi 10) + 2 x 25) is 17.9 wide but curved with radius 10; all clamped to [h/8, h].
+  // Local size = 2.5 x width (2 area / perimeter), and on a curved face that wraps round, at most
+  // its radius of curvature: the disks (r = 10) are 10 wide, so 25; the lateral face (2 pi 10 x 25,
+  // perimeter 2 (2 pi 10) + 2 x 25) is 17.9 wide but a tube of radius 10; all clamped to [h/8, h].
   const std::vector<double> sizes = wefm_cad::local_face_sizes(m, 30.0);
   REQUIRE(sizes.size() == 3);
   for (size_t k = 0; k < 3; ++k) {
     CAPTURE(m.faces[k].surface_type);
     // Faceted: a little below the smooth values (the radius from facets is r cos of half the
     // angle between neighbouring facets).
-    CHECK(sizes[k] == doctest::Approx(10.0).epsilon(m.faces[k].surface_type == "cylinder" ? 0.05 : 0.02));
+    if (m.faces[k].surface_type == "cylinder") CHECK(sizes[k] == doctest::Approx(10.0).epsilon(0.05));
+    else CHECK(sizes[k] == doctest::Approx(25.0).epsilon(0.02));
   }
   CHECK(wefm_cad::local_face_sizes(m, 2.0) == std::vector<double>(3, 2.0));
   const auto nodes = wefm_cad::discretise_model_edges(m, 2.0);
@@ -345,6 +349,42 @@ TEST_CASE("graded edge discretisation: long edges shrink towards a vertex where 
     }
   }
   CHECK(long_edges == 8);
+}
+
+TEST_CASE("edge segments shrink where a face is narrow, not across a gap outside it") {
+  // A plate 10 thick whose outline has an arm 2 wide (0 < y < 2, 10 < x < 100) beside a slot 2
+  // wide (2 < y < 4) open at x = 100. At h = 10 the arm's outer edge (y = 0 on top) faces the
+  // arm's inner edge across 2 of material: segments about 2.5 x 2. The slot's far side (y = 4)
+  // faces the arm across 2 of void: the face is not narrow there, its segments grow back to h.
+  BRepBuilderAPI_MakePolygon outline;
+  for (auto [x, y] : {std::pair<double, double>{0, 0}, {100, 0}, {100, 2}, {10, 2}, {10, 4}, {100, 4}, {100, 100}, {0, 100}})
+    outline.Add(gp_Pnt(x, y, 0));
+  outline.Close();
+  const TopoDS_Shape plate = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(0, 0, 10)).Shape();
+  const wefm_cad::CadModel m = load_shape(plate, "wefm_arm_plate.brep");
+  const double h = 10;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, wefm_cad::local_face_sizes(m, h), 0.3);
+  // The segments of the edge from (x0, y, z) to (x1, y, z) in either direction.
+  auto segments_of = [&](double x0, double x1, double y, double z) {
+    std::vector<double> l;
+    for (const auto& [id, e] : nodes) {
+      const size_t n = e.xyz.size() / 3;
+      const double* a = &e.xyz[0];
+      const double* b = &e.xyz[3 * (n - 1)];
+      auto at = [](const double* p, double x, double yy, double zz) { return std::fabs(p[0] - x) + std::fabs(p[1] - yy) + std::fabs(p[2] - zz) < 1e-6; };
+      if (!((at(a, x0, y, z) && at(b, x1, y, z)) || (at(a, x1, y, z) && at(b, x0, y, z)))) continue;
+      for (size_t k = 0; k + 1 < n; ++k)
+        l.push_back(std::hypot(e.xyz[3 * k + 3] - e.xyz[3 * k], e.xyz[3 * k + 4] - e.xyz[3 * k + 1], e.xyz[3 * k + 5] - e.xyz[3 * k + 2]));
+    }
+    return l;
+  };
+  const std::vector<double> outer = segments_of(0, 100, 0, 10), far_side = segments_of(10, 100, 4, 10);
+  REQUIRE(outer.size() > 2);
+  REQUIRE(far_side.size() > 2);
+  // Along the arm (x from 30 to 90: the middle of the edge's segments) about 5; never above h.
+  for (double x : outer) CHECK(x <= h * 1.05);
+  CHECK(outer[outer.size() / 2] == doctest::Approx(5.0).epsilon(0.15));
+  CHECK(*std::max_element(far_side.begin(), far_side.end()) > 0.85 * h);
 }
 
 TEST_CASE("unreadable and unknown files are reported, not thrown") {
