@@ -30,6 +30,8 @@
 #include <TopoDS_Iterator.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
+#include <Geom2d_Curve.hxx>
+#include <gp_Pnt2d.hxx>
 #include <gp_Vec.hxx>
 
 #include "cad_face_repair.hpp"
@@ -104,7 +106,7 @@ class Importer {
 
   bool run() {
     tri_ = BRep_Tool::Triangulation(face_, loc_);
-    if (tri_.IsNull() || tri_->NbTriangles() == 0) return fail("the face has no triangulation (BRepMesh made none)");
+    if (tri_.IsNull() || tri_->NbTriangles() == 0) return from_edge_polygons();
     const gp_Trsf trsf = loc_.Transformation();
     const int n = tri_->NbNodes();
     points_.reserve(static_cast<size_t>(n));
@@ -157,6 +159,66 @@ class Importer {
     }
     if (out_.loops.empty()) return fail("the face has no wire");
     return true;
+  }
+
+  // BRepMesh can make no facets for a face (narrower than the deflection, between edges whose
+  // polygons cross) while its neighbours have theirs, and so polygons of the shared edges. A face with
+  // one loop without seam or pole is then built on those polygons' nodes (so its edges match the
+  // neighbours') and filled from its loop in the surface's parameters.
+  bool from_edge_polygons() {
+    const std::string why = "the face has no triangulation (BRepMesh made none)";
+    if (!collect_loops()) return false;
+    if (out_.loops.size() != 1) return fail(why + " and more than one loop");
+    TopTools_IndexedMapOfShape vertices;
+    std::vector<int> vertex_node;
+    std::vector<std::array<double, 2>> uv;
+    raw_chains_.resize(out_.edges.size());
+    for (size_t k = 0; k < out_.edges.size(); ++k) {
+      const std::string edge = " and edge " + std::to_string(out_.edges[k].id);
+      if (out_.edges[k].seam || out_.edges[k].degenerated) return fail(why + " and a seam or a pole");
+      const TopoDS_Edge e = TopoDS::Edge(shapes_[k].Oriented(TopAbs_FORWARD));
+      Handle(Poly_PolygonOnTriangulation) poly;
+      Handle(Poly_Triangulation) tri;
+      TopLoc_Location loc;
+      BRep_Tool::PolygonOnTriangulation(e, poly, tri, loc, 1);
+      if (poly.IsNull() || tri.IsNull() || !poly->HasParameters() || poly->NbNodes() < 2)
+        return fail(why + edge + " has no polygon on another face's facets");
+      double first = 0, last = 0;
+      const Handle(Geom2d_Curve) pcurve = BRep_Tool::CurveOnSurface(e, face_, first, last);
+      if (pcurve.IsNull()) return fail(why + edge + " has no curve on the face");
+      TopoDS_Vertex ends[2];
+      TopExp::Vertices(e, ends[0], ends[1]);
+      for (int i = 1; i <= poly->NbNodes(); ++i) {
+        const bool end = i == 1 || i == poly->NbNodes();
+        if (end && ends[i == 1 ? 0 : 1].IsNull()) return fail(why + edge + " has no vertex");
+        const int slot = end ? vertices.Add(ends[i == 1 ? 0 : 1]) : 0;
+        if (end && slot <= static_cast<int>(vertex_node.size())) {
+          raw_chains_[k].push_back(vertex_node[static_cast<size_t>(slot - 1)]);
+          continue;
+        }
+        const gp_Pnt2d p = pcurve->Value(poly->Parameter(i));
+        if (end) vertex_node.push_back(static_cast<int>(points_.size()));
+        raw_chains_[k].push_back(static_cast<int>(points_.size()));
+        points_.push_back(tri->Node(poly->Node(i)).Transformed(loc.Transformation()));
+        uv.push_back({p.X(), p.Y()});
+      }
+    }
+    std::vector<int> ring;
+    for (const CadEdgeUse& u : out_.loops.front()) {
+      std::vector<int> chain = raw_chains_[static_cast<size_t>(u.edge)];
+      if (u.reversed) std::reverse(chain.begin(), chain.end());
+      for (int node : chain)
+        if (ring.empty() || ring.back() != node) ring.push_back(node);
+    }
+    if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+    std::vector<std::array<double, 2>> ring_uv;
+    for (int node : ring) ring_uv.push_back(uv[static_cast<size_t>(node)]);
+    for (const std::array<int, 3>& t : fill_polygon(ring_uv))
+      facets_.push_back({ring[static_cast<size_t>(t[0])], ring[static_cast<size_t>(t[1])], ring[static_cast<size_t>(t[2])]});
+    if (facets_.empty()) return fail(why + " and its loop has fewer than 3 nodes");
+    UnionFind uf(static_cast<int>(points_.size()));
+    build_mesh(uf);
+    return out_.error.empty();
   }
 
   // Chains in triangulation node indices; merges seam sides and degenerate points.
