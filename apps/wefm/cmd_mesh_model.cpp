@@ -103,6 +103,14 @@ struct FaceMeshRun {
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
 };
 
+// The run of a face to be meshed again: nothing but its face and how often its edges were refined.
+void reset_run(FaceMeshRun& r, int edge_refinements) {
+  const wefm_cad::CadFace* face = r.face;
+  r = FaceMeshRun{};
+  r.face = face;
+  r.edge_refinements = edge_refinements;
+}
+
 Json defect_edges_json(const ConformityCounts& conf) {
   Json out = Json::array();
   for (const auto& d : conf.defect_edges)
@@ -243,12 +251,7 @@ std::vector<size_t> refine_for_failed_faces(const wefm_cad::CadModel& model, std
     for (const wefm_cad::CadEdge& e : model.faces[i].edges)
       if (changed.count(e.id)) faces.insert(i);
   std::vector<size_t> todo(faces.begin(), faces.end());
-  for (size_t i : todo) {
-    const int refined = runs[i].edge_refinements + 1;
-    runs[i] = FaceMeshRun{};
-    runs[i].face = &model.faces[i];
-    runs[i].edge_refinements = refined;
-  }
+  for (size_t i : todo) reset_run(runs[i], runs[i].edge_refinements + 1);
   return todo;
 }
 
@@ -367,12 +370,7 @@ std::vector<size_t> adopt_edge_nodes(const wefm_cad::CadModel& model, std::vecto
     }
     if (lacks) todo.push_back(i);
   }
-  for (size_t i : todo) {
-    const int refined = runs[i].edge_refinements;
-    runs[i] = FaceMeshRun{};
-    runs[i].face = &model.faces[i];
-    runs[i].edge_refinements = refined;
-  }
+  for (size_t i : todo) reset_run(runs[i], runs[i].edge_refinements);
   return todo;
 }
 
@@ -612,10 +610,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     mesh_faces(own);
     for (size_t j = 0; j < runs.size(); ++j)
       if (source[j] && (asked.count(j) || asked.count(source[j] - 1))) {
-        const int refined = runs[j].edge_refinements;
-        runs[j] = FaceMeshRun{};
-        runs[j].face = &model.faces[j];
-        runs[j].edge_refinements = refined;
+        reset_run(runs[j], runs[j].edge_refinements);
         if (!copy_coincident(runs[j], runs[source[j] - 1], edge_nodes, weld_tolerance)) alone.push_back(j);
       }
     mesh_faces(alone);
