@@ -5,7 +5,9 @@ no flattener accepts (issue 28, "every face meshed"), at 1/40 of the bounding-bo
 - gmsh_CylinderInnerLoopCrossingSeam.brep: a hole in a cylinder whose two lobes meet on the seam
   (BRepMesh's facets form two fans at that vertex);
 - gmsh_PeriodicFaceWithLargeTolerance.brep: holes whose wires touch the outer wire at a vertex;
-- gmsh_SlenderSurface.brep: an INTERNAL face (its edges read as constraint lines: "no wire").
+- gmsh_SlenderSurface.brep: an INTERNAL face (its edges read as constraint lines: "no wire");
+- gmsh_U_Joint_2.stp: B-spline faces with a pole where BRepMesh leaves two facets on the same three
+  nodes facing opposite ways, hanging on the rest by the pole alone (two fans there).
 
 For each: exit 0, every face meshed with triangles of non-zero quality, and the mesh's edges used as
 the B-rep says (the report's conformity counts nothing unexplained). The figures are the tool's own
@@ -20,7 +22,7 @@ import sys
 import tempfile
 
 MODELS = ["gmsh_CylinderInnerLoopCrossingSeam.brep", "gmsh_PeriodicFaceWithLargeTolerance.brep",
-          "gmsh_SlenderSurface.brep"]
+          "gmsh_SlenderSurface.brep", "gmsh_U_Joint_2.stp"]
 
 
 def check(wefm, model, tmp):
