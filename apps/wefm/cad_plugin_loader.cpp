@@ -92,7 +92,10 @@ int load_cad_model_via_plugin(const std::string& path, const wefm_cad::Tessellat
   };
   const double left = seconds_left();
   const double limit = left >= 0 ? left + 1 : kDefaultImportSeconds;  // the deadline itself stops it first
-  const ChildOutcome child = run_in_child(import, limit);
+  // The machine's memory as the import's address-space cap: an import that would exceed it ends
+  // with a message instead of swapping the machine or waking the OOM killer.
+  const double memory_mb = physical_memory_mb();
+  const ChildOutcome child = run_in_child(import, limit, memory_mb);
   switch (child.kind) {
     case ChildOutcome::kStopped:
       error = path + ": CAD import: " + stop_reason();
@@ -105,7 +108,8 @@ int load_cad_model_via_plugin(const std::string& path, const wefm_cad::Tessellat
       return kExitTimeLimit;
     }
     case ChildOutcome::kFailed:
-      error = path + ": CAD import failed: the import process " + child.problem;
+      error = path + ": CAD import failed: the import process " + child.problem +
+              (child.problem == "ran out of memory" ? " (its cap is the machine's " + std::to_string(static_cast<long long>(memory_mb)) + " MB)" : "");
       return kExitIo;
     case ChildOutcome::kDone: break;
   }

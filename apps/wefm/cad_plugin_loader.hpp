@@ -12,7 +12,8 @@ namespace wefm_cli {
 // model back through a pipe: Open CASCADE cannot be interrupted (a mutated STEP file can keep it
 // busy for hours), so the child is killed on a stop request (stop.hpp: Ctrl-C, SIGTERM, the
 // --time-limit deadline) or after kDefaultImportSeconds when there is no deadline, and a crash in
-// Open CASCADE ends the child, not the tool. Returns kExitOk, or with `error`: kExitIo when the model
+// Open CASCADE ends the child, not the tool. The child's address space is capped at the machine's
+// physical memory. Returns kExitOk, or with `error`: kExitIo when the model
 // cannot be read, the plugin cannot be opened (`error` says where it looked and why each place
 // failed) or the import crashed; stop_exit_code() when stopped; kExitTimeLimit at the import's
 // default limit.

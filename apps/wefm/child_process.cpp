@@ -5,9 +5,11 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,12 +19,23 @@ namespace wefm_cli {
 
 namespace {
 
-[[noreturn]] void child_main(int out_fd, pid_t parent, const std::function<std::string()>& work) {
+constexpr int kChildOutOfMemory = 3;
+
+[[noreturn]] void child_main(int out_fd, pid_t parent, const std::function<std::string()>& work, double memory_mb) {
   // A Ctrl-C at the terminal reaches the child too: it may simply die, the parent reports it.
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (getppid() != parent) _exit(1);  // the parent died before the line above
+  if (memory_mb > 0) {
+    const rlim_t bytes = static_cast<rlim_t>(memory_mb * 1048576.0);
+    rlimit cur{};
+    // Never raised above what the parent was given.
+    if (getrlimit(RLIMIT_AS, &cur) == 0 && (cur.rlim_cur == RLIM_INFINITY || bytes < cur.rlim_cur)) {
+      const rlimit cap{bytes, cur.rlim_max};
+      setrlimit(RLIMIT_AS, &cap);
+    }
+  }
   int code = 0;
   try {
     const std::string bytes = work();
@@ -35,6 +48,8 @@ namespace {
       }
       done += static_cast<size_t>(n);
     }
+  } catch (const std::bad_alloc&) {
+    code = kChildOutOfMemory;
   } catch (...) {
     code = 2;
   }
@@ -47,6 +62,8 @@ std::string describe(int status) {
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
     std::snprintf(buf, sizeof buf, "was killed by signal %d (%s)", sig, strsignal(sig));
+  } else if (WEXITSTATUS(status) == kChildOutOfMemory) {
+    std::snprintf(buf, sizeof buf, "ran out of memory");
   } else {
     std::snprintf(buf, sizeof buf, "ended with status %d", WEXITSTATUS(status));
   }
@@ -55,7 +72,12 @@ std::string describe(int status) {
 
 }  // namespace
 
-ChildOutcome run_in_child(const std::function<std::string()>& work, double seconds) {
+double physical_memory_mb() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) / 1048576.0 : 0.0;
+}
+
+ChildOutcome run_in_child(const std::function<std::string()>& work, double seconds, double memory_mb) {
   ChildOutcome out;
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
@@ -73,7 +95,7 @@ ChildOutcome run_in_child(const std::function<std::string()>& work, double secon
   }
   if (pid == 0) {
     close(fds[0]);
-    child_main(fds[1], parent, work);
+    child_main(fds[1], parent, work, memory_mb);
   }
   close(fds[1]);
   set_child_process(pid);

@@ -50,15 +50,15 @@ SurfaceLocator::SurfaceLocator(const TriMesh& mesh) : mesh_(mesh) {
   centre_ = 0.5 * lo_ + 0.5 * hi;
   cell_ = std::max(2.0 * edge, 1e-12 * std::max(diag_, 1e-300));
   // Keep the dense grid near a few cells per triangle.
+  // Counted in doubles first: a face whose mean edge is 1e-12 of its extent asks for 1e12 cells a
+  // side, past int.
   for (;;) {
     double total = 1;
-    for (int k = 0; k < 3; ++k) {
-      n_[k] = static_cast<int>((hi[k] - lo_[k]) / cell_) + 1;
-      total *= n_[k];
-    }
+    for (int k = 0; k < 3; ++k) total *= std::floor((hi[k] - lo_[k]) / cell_) + 1;
     if (total <= 8.0 * static_cast<double>(nt) + 64) break;
     cell_ *= 1.5;
   }
+  for (int k = 0; k < 3; ++k) n_[k] = static_cast<int>((hi[k] - lo_[k]) / cell_) + 1;
   const size_t cells = static_cast<size_t>(n_[0]) * static_cast<size_t>(n_[1]) * static_cast<size_t>(n_[2]);
   auto cell_of = [&](const Vec3& p, int k) { return std::clamp(static_cast<int>((p[k] - lo_[k]) / cell_), 0, n_[k] - 1); };
   auto box = [&](const Tri& t, int lo[3], int hi_[3]) {
