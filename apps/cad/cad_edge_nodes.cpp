@@ -21,7 +21,7 @@ constexpr double kWidthFactor = 2.5;
 // Edge segments shrink towards a narrow part of a face down to h / this: a local narrowing costs a
 // few segments (they grow back by g per unit length), a face that is a needle all along its length
 // keeps slivers.
-constexpr double kNarrowestEdgeFraction = 128;
+constexpr double kNarrowestEdgeFraction = 32;
 // A face at least this many times its smaller radius of curvature wide (2 area / perimeter) wraps
 // round it: a tube of radius r is about 2 pi r wide, a long half tube pi r, a quarter-round fillet
 // about 1.6 r. A short half tube is narrow too: it wraps by its normals (turns_little).
@@ -29,6 +29,8 @@ constexpr double kWrapWidth = 2;
 // A face whose facet normals all lie within this angle of their mean turns less than about 120
 // degrees (a quarter-round fillet along a line turns 90).
 constexpr double kLittleTurn = 60 * 3.14159265358979 / 180;
+// The share of a face's area whose radius of curvature sets its size.
+constexpr double kCurvatureQuantile = 0.1;
 // The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
 constexpr double kSmallestRadiusFraction = 8;
 
@@ -385,7 +387,9 @@ double chain_length(const CadFace& f, const CadEdge& e) {
 // The face's smaller radius of curvature, from its facets: across each facet edge inside the face,
 // the mean distance of the two opposite corners from the edge over the angle between the facets'
 // normals (on a cylinder's facets, its radius). A low quantile, not the minimum, so one skewed facet
-// does not decide it; infinite on a flat face.
+// does not decide it, weighted by the facets' area: the tessellation is finest where the face is
+// most curved, and a freeform face curved sharply in one corner is not meshed at that radius all
+// over (one face of pyocc_surf114 took 200k triangles so). Infinite on a flat face.
 double curvature_radius(const CadFace& f) {
   const size_t n = f.triangles.size() / 3;
   auto point = [&](int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; };
@@ -405,7 +409,7 @@ double curvature_radius(const CadFace& f) {
     return le > 0 ? std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / le : 0.0;
   };
   std::unordered_map<unsigned long long, size_t> first;  // directed edge -> the corner opposite it
-  std::vector<double> radii;
+  std::vector<std::pair<double, double>> radii;  // radius, weight
   for (size_t t = 0; t < n; ++t)
     for (size_t c = 0; c < 3; ++c) {
       const int32_t va = f.triangles[3 * t + c], vb = f.triangles[3 * t + (c + 1) % 3];
@@ -420,12 +424,22 @@ double curvature_radius(const CadFace& f) {
       if (!(angle > 1e-3)) continue;
       const double h0 = off_line(point(f.triangles[it->second]), point(va), point(vb));
       const double h1 = off_line(point(f.triangles[3 * t + (c + 2) % 3]), point(va), point(vb));
-      radii.push_back(0.5 * (h0 + h1) / angle);
+      const double edge = distance(point(va), point(vb));
+      radii.emplace_back(0.5 * (h0 + h1) / angle, 0.5 * edge * (h0 + h1));  // the two facets' area
     }
   if (radii.size() < 4) return std::numeric_limits<double>::infinity();
-  const size_t q = radii.size() / 10;
-  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(q), radii.end());
-  return radii[q];
+  double total = 0;
+  for (size_t t = 0; t < n; ++t) {
+    const double *a = point(f.triangles[3 * t]), *b = point(f.triangles[3 * t + 1]), *c = point(f.triangles[3 * t + 2]);
+    total += 0.5 * off_line(c, a, b) * distance(a, b);
+  }
+  std::sort(radii.begin(), radii.end());
+  // Each facet edge weighs its two facets and each facet has three edges: all the face's facet
+  // edges, curved or flat, weigh about 3 x its area.
+  double below = 0;
+  for (const auto& [r, w] : radii)
+    if ((below += w) >= kCurvatureQuantile * 3 * total) return r;
+  return std::numeric_limits<double>::infinity();
 }
 
 // Whether all the face's facet normals lie within kLittleTurn of their area-weighted mean: a fillet
