@@ -346,12 +346,69 @@ std::vector<double> with_nodes(const wefm_cad::CadFace& f, const wefm_cad::CadEd
   return out;
 }
 
-// Adds the nodes the face meshes put on model edges to those edges; returns the faces to mesh again
+// Arc length along the face's chain of edge e at which it passes within `tol` of p, or -1.
+double arc_length_at(const wefm_cad::CadFace& f, const wefm_cad::CadEdge& e, const double* p, double tol) {
+  double s0 = 0;
+  for (size_t q = 0; q + 1 < e.vertices.size(); ++q) {
+    const double* a = &f.xyz[3 * static_cast<size_t>(e.vertices[q])];
+    const double* b = &f.xyz[3 * static_cast<size_t>(e.vertices[q + 1])];
+    const double len = distance3(a, b);
+    double t = 0;
+    if (len > 0) {
+      for (int c = 0; c < 3; ++c) t += (p[c] - a[c]) * (b[c] - a[c]);
+      t = std::clamp(t / (len * len), 0.0, 1.0);
+    }
+    const double x[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+    if (distance3(p, x) <= tol) return s0 + t * len;
+    s0 += len;
+  }
+  return -1;
+}
+
+// Faces lying on each other whose edges are not the same (the neighbour of one volume splits an
+// edge the other does not have) carry different nodes and cannot be meshed alike: each face's edges
+// get the other's nodes that lie on them, by edge id.
+void coincident_nodes(const wefm_cad::CadModel& model, const std::vector<size_t>& source,
+                      const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
+                      std::map<long long, std::vector<EdgeNode>>& out) {
+  for (size_t j = 0; j < source.size(); ++j) {
+    if (!source[j]) continue;
+    const wefm_cad::CadFace* pair[2] = {&model.faces[j], &model.faces[source[j] - 1]};
+    for (int side = 0; side < 2; ++side) {
+      const wefm_cad::CadFace& from = *pair[side];
+      const wefm_cad::CadFace& to = *pair[1 - side];
+      for (const wefm_cad::CadEdge& e : from.edges) {
+        const auto it = edge_nodes.find(e.id);
+        if (it == edge_nodes.end()) continue;
+        for (size_t k = 0; k + 2 < it->second.xyz.size(); k += 3) {
+          const double* p = &it->second.xyz[k];
+          for (const wefm_cad::CadEdge& d : to.edges) {
+            const auto jt = edge_nodes.find(d.id);
+            if (d.id == e.id || jt == edge_nodes.end()) continue;
+            bool known = false;
+            for (size_t g = 0; g + 2 < jt->second.xyz.size() && !known; g += 3) known = distance3(p, &jt->second.xyz[g]) <= tol;
+            const double s = known ? -1 : arc_length_at(to, d, p, tol);
+            if (known) break;
+            if (s > 0) {
+              out[d.id].push_back({s, {p[0], p[1], p[2]}});
+              break;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+// Adds the nodes the face meshes put on model edges, and those faces lying on each other need from
+// each other, to those edges; returns the faces to mesh again
 // (those on such an edge whose mesh lacks one of its nodes), reset for meshing.
 std::vector<size_t> adopt_edge_nodes(const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
-                                     std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol) {
+                                     std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
+                                     const std::vector<size_t>& source) {
   std::map<long long, std::vector<EdgeNode>> added;
   for (const FaceMeshRun& r : runs) nodes_put_on_edges(r, edge_nodes, tol, added);
+  coincident_nodes(model, source, edge_nodes, tol, added);
   if (added.empty()) return {};
   std::set<long long> done;
   for (const wefm_cad::CadFace& f : model.faces)
@@ -625,7 +682,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     mesh_or_copy(todo);
   }
   for (int round = 0; round < kEdgeNodeAdoptions && !interrupted(); ++round) {
-    todo = adopt_edge_nodes(model, runs, edge_nodes, weld_tolerance);
+    todo = adopt_edge_nodes(model, runs, edge_nodes, weld_tolerance, source);
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
