@@ -387,10 +387,13 @@ double chain_length(const CadFace& f, const CadEdge& e) {
 // The face's smaller radius of curvature, from its facets: across each facet edge inside the face,
 // the mean distance of the two opposite corners from the edge over the angle between the facets'
 // normals (on a cylinder's facets, its radius). A low quantile, not the minimum, so one skewed facet
-// does not decide it, weighted by the facets' area: the tessellation is finest where the face is
-// most curved, and a freeform face curved sharply in one corner is not meshed at that radius all
-// over (one face of pyocc_surf114 took 200k triangles so). Infinite on a flat face.
-double curvature_radius(const CadFace& f) {
+// does not decide it; infinite on a flat face. With `by_area`, the quantile is of the face's area,
+// not of its curved facet edges: the tessellation is finest where the face is most curved, and a
+// face that turns little but sharply in one corner is then not meshed at that radius all over (one
+// face of pyocc_surf114 took 200k triangles so). A face that turns far keeps the plain quantile:
+// elements larger than its radius where it turns put chords across it that its neighbours' meshes
+// share (caxif_as1-tu-203's two half shells).
+double curvature_radius(const CadFace& f, bool by_area) {
   const size_t n = f.triangles.size() / 3;
   auto point = [&](int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; };
   auto normal = [&](size_t t) {
@@ -428,6 +431,11 @@ double curvature_radius(const CadFace& f) {
       radii.emplace_back(0.5 * (h0 + h1) / angle, 0.5 * edge * (h0 + h1));  // the two facets' area
     }
   if (radii.size() < 4) return std::numeric_limits<double>::infinity();
+  if (!by_area) {
+    const size_t q = radii.size() / 10;
+    std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(q), radii.end());
+    return radii[q].first;
+  }
   double total = 0;
   for (size_t t = 0; t < n; ++t) {
     const double *a = point(f.triangles[3 * t]), *b = point(f.triangles[3 * t + 1]), *c = point(f.triangles[3 * t + 2]);
@@ -497,8 +505,9 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     // holes keep their six segments through their closed edges (discretise_model_edges).
     // Curvature may ask for smaller elements than narrowness: a tube needs its six segments around
     // whatever its length, while a long narrow strip cannot ask for millions along it.
-    const double r = curvature_radius(f);
-    const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
+    const bool little = turns_little(f);
+    const double r = curvature_radius(f, little);
+    const double curved = width < kWrapWidth * r && little ? std::sqrt(r * h) : r;
     const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
     sizes[k] = std::clamp(std::min(narrow, curved), h / kSmallestRadiusFraction, h);
   }
