@@ -365,37 +365,58 @@ double arc_length_at(const wefm_cad::CadFace& f, const wefm_cad::CadEdge& e, con
   return -1;
 }
 
-// Faces lying on each other whose edges are not the same (the neighbour of one volume splits an
-// edge the other does not have) carry different nodes and cannot be meshed alike: each face's edges
-// get the other's nodes that lie on them, by edge id.
+double chain_length3(const wefm_cad::CadFace& f, const wefm_cad::CadEdge& e) {
+  double len = 0;
+  for (size_t q = 0; q + 1 < e.vertices.size(); ++q)
+    len += distance3(&f.xyz[3 * static_cast<size_t>(e.vertices[q])], &f.xyz[3 * static_cast<size_t>(e.vertices[q + 1])]);
+  return len;
+}
+
+bool has_edge(const wefm_cad::CadFace& f, long long id) {
+  return std::any_of(f.edges.begin(), f.edges.end(), [&](const wefm_cad::CadEdge& e) { return e.id == id; });
+}
+
+// Faces lying on each other whose edges are not the same (a neighbour of one volume splits an edge
+// the other does not have) carry different nodes and cannot be meshed alike. The later face's edges
+// take the earlier face's nodes that lie on them, besides their own ends (`replaced`), and the
+// earlier face's edges get the later one's vertices that lie inside them (`added`): the two then
+// have the same nodes, and only a vertex of one can come close to a node of the other (a union of
+// both node sets would put pairs of close nodes all along: slivers).
 void coincident_nodes(const wefm_cad::CadModel& model, const std::vector<size_t>& source,
                       const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
-                      std::map<long long, std::vector<EdgeNode>>& out) {
+                      std::map<long long, std::vector<EdgeNode>>& added, std::map<long long, std::vector<double>>& replaced) {
   for (size_t j = 0; j < source.size(); ++j) {
     if (!source[j]) continue;
-    const wefm_cad::CadFace* pair[2] = {&model.faces[j], &model.faces[source[j] - 1]};
-    for (int side = 0; side < 2; ++side) {
-      const wefm_cad::CadFace& from = *pair[side];
-      const wefm_cad::CadFace& to = *pair[1 - side];
-      for (const wefm_cad::CadEdge& e : from.edges) {
-        const auto it = edge_nodes.find(e.id);
-        if (it == edge_nodes.end()) continue;
-        for (size_t k = 0; k + 2 < it->second.xyz.size(); k += 3) {
-          const double* p = &it->second.xyz[k];
-          for (const wefm_cad::CadEdge& d : to.edges) {
-            const auto jt = edge_nodes.find(d.id);
-            if (d.id == e.id || jt == edge_nodes.end()) continue;
-            bool known = false;
-            for (size_t g = 0; g + 2 < jt->second.xyz.size() && !known; g += 3) known = distance3(p, &jt->second.xyz[g]) <= tol;
-            const double s = known ? -1 : arc_length_at(to, d, p, tol);
-            if (known) break;
-            if (s > 0) {
-              out[d.id].push_back({s, {p[0], p[1], p[2]}});
-              break;
-            }
-          }
+    const wefm_cad::CadFace& later = model.faces[j];
+    const wefm_cad::CadFace& earlier = model.faces[source[j] - 1];
+    for (const wefm_cad::CadEdge& d : later.edges) {
+      const auto it = edge_nodes.find(d.id);
+      if (it == edge_nodes.end() || has_edge(earlier, d.id)) continue;
+      const std::vector<double>& own = it->second.xyz;
+      const double total = chain_length3(later, d);
+      std::vector<EdgeNode> list{{0.0, {own[0], own[1], own[2]}}, {total, {own[own.size() - 3], own[own.size() - 2], own.back()}}};
+      for (const wefm_cad::CadEdge& e : earlier.edges) {
+        const auto jt = edge_nodes.find(e.id);
+        if (jt == edge_nodes.end()) continue;
+        for (size_t k = 0; k + 2 < jt->second.xyz.size(); k += 3) {
+          const double* p = &jt->second.xyz[k];
+          const double s = arc_length_at(later, d, p, tol);
+          if (s > 0 && s < total && distance3(p, list[0].p.data()) > tol && distance3(p, list[1].p.data()) > tol)
+            list.push_back({s, {p[0], p[1], p[2]}});
+        }
+        // The later face's vertex inside this edge of the earlier one.
+        for (const double* p : {own.data(), own.data() + own.size() - 3}) {
+          bool known = false;
+          for (size_t g = 0; g + 2 < jt->second.xyz.size() && !known; g += 3) known = distance3(p, &jt->second.xyz[g]) <= tol;
+          const double s = known ? -1 : arc_length_at(earlier, e, p, tol);
+          if (s > 0) added[e.id].push_back({s, {p[0], p[1], p[2]}});
         }
       }
+      std::stable_sort(list.begin(), list.end(), [](const EdgeNode& x, const EdgeNode& y) { return x.s < y.s; });
+      std::vector<double> xyz;
+      for (size_t k = 0; k < list.size(); ++k)
+        if (k == 0 || distance3(list[k].p.data(), &xyz[xyz.size() - 3]) > tol) xyz.insert(xyz.end(), list[k].p.begin(), list[k].p.end());
+      if (xyz.size() >= 6 && xyz != own) replaced[d.id] = std::move(xyz);
     }
   }
 }
@@ -407,23 +428,25 @@ std::vector<size_t> adopt_edge_nodes(const wefm_cad::CadModel& model, std::vecto
                                      std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
                                      const std::vector<size_t>& source) {
   std::map<long long, std::vector<EdgeNode>> added;
+  std::map<long long, std::vector<double>> replaced;
   for (const FaceMeshRun& r : runs) nodes_put_on_edges(r, edge_nodes, tol, added);
-  coincident_nodes(model, source, edge_nodes, tol, added);
-  if (added.empty()) return {};
-  std::set<long long> done;
+  coincident_nodes(model, source, edge_nodes, tol, added, replaced);
+  if (added.empty() && replaced.empty()) return {};
+  std::set<long long> changed;
+  for (auto& [id, xyz] : replaced) edge_nodes[id].xyz = std::move(xyz), changed.insert(id);
   for (const wefm_cad::CadFace& f : model.faces)
     for (const wefm_cad::CadEdge& e : f.edges)
-      if (added.count(e.id) && done.insert(e.id).second)
+      if (added.count(e.id) && changed.insert(e.id).second)
         edge_nodes[e.id].xyz = with_nodes(f, e, edge_nodes[e.id].xyz, added[e.id], tol);
   std::vector<size_t> todo;
   for (size_t i = 0; i < runs.size(); ++i) {
     bool lacks = false;
     std::unique_ptr<PointGrid> grid;
     for (const wefm_cad::CadEdge& e : model.faces[i].edges) {
-      const auto it = added.find(e.id);
-      if (it == added.end() || runs[i].tris.empty()) continue;
+      if (!changed.count(e.id) || runs[i].tris.empty()) continue;
       if (!grid) grid = std::make_unique<PointGrid>(boundary_grid(runs[i], tol));
-      for (const EdgeNode& a : it->second) lacks = lacks || grid->find(a.p.data(), runs[i].xyz) < 0;
+      const std::vector<double>& xyz = edge_nodes[e.id].xyz;
+      for (size_t k = 0; k + 2 < xyz.size() && !lacks; k += 3) lacks = grid->find(&xyz[k], runs[i].xyz) < 0;
     }
     if (lacks) todo.push_back(i);
   }
