@@ -272,6 +272,18 @@ double distance3(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
+// Distance of p from the segment a b; t: where the closest point is (0 at a, 1 at b).
+double off_segment(const double* a, const double* b, const double* p, double& t) {
+  const double len = distance3(a, b);
+  t = 0;
+  if (len > 0) {
+    for (int c = 0; c < 3; ++c) t += (p[c] - a[c]) * (b[c] - a[c]);
+    t = std::clamp(t / (len * len), 0.0, 1.0);
+  }
+  const double x[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+  return distance3(p, x);
+}
+
 PointGrid boundary_grid(const FaceMeshRun& r, double tol) {
   PointGrid grid(tol);
   const std::vector<char> boundary = ModelMesh::boundary_nodes(r.xyz.size() / 3, r.tris);
@@ -317,16 +329,9 @@ std::vector<double> with_nodes(const wefm_cad::CadFace& f, const wefm_cad::CadEd
     const double* p = &nodes[3 * j];
     double s = j + 1 == n ? -1 : s0;
     for (size_t q = seg; q + 1 < m && j + 1 < n; ++q) {
-      const double* a = at(q);
-      const double* b = at(q + 1);
-      const double len = distance3(a, b);
+      const double len = distance3(at(q), at(q + 1));
       double t = 0;
-      if (len > 0) {
-        for (int c = 0; c < 3; ++c) t += (p[c] - a[c]) * (b[c] - a[c]);
-        t = std::clamp(t / (len * len), 0.0, 1.0);
-      }
-      const double x[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
-      if (distance3(p, x) <= tol) {
+      if (off_segment(at(q), at(q + 1), p, t) <= tol) {
         s = s0 + t * len;
         break;
       }
@@ -354,12 +359,7 @@ double arc_length_at(const wefm_cad::CadFace& f, const wefm_cad::CadEdge& e, con
     const double* b = &f.xyz[3 * static_cast<size_t>(e.vertices[q + 1])];
     const double len = distance3(a, b);
     double t = 0;
-    if (len > 0) {
-      for (int c = 0; c < 3; ++c) t += (p[c] - a[c]) * (b[c] - a[c]);
-      t = std::clamp(t / (len * len), 0.0, 1.0);
-    }
-    const double x[3] = {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
-    if (distance3(p, x) <= tol) return s0 + t * len;
+    if (off_segment(a, b, p, t) <= tol) return s0 + t * len;
     s0 += len;
   }
   return -1;
