@@ -29,8 +29,6 @@ constexpr double kWrapWidth = 2;
 // A face whose facet normals all lie within this angle of their mean turns less than about 120
 // degrees (a quarter-round fillet along a line turns 90).
 constexpr double kLittleTurn = 60 * 3.14159265358979 / 180;
-// The share of a face's area whose radius of curvature sets its size.
-constexpr double kCurvatureQuantile = 0.1;
 // The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
 constexpr double kSmallestRadiusFraction = 8;
 
@@ -387,13 +385,8 @@ double chain_length(const CadFace& f, const CadEdge& e) {
 // The face's smaller radius of curvature, from its facets: across each facet edge inside the face,
 // the mean distance of the two opposite corners from the edge over the angle between the facets'
 // normals (on a cylinder's facets, its radius). A low quantile, not the minimum, so one skewed facet
-// does not decide it; infinite on a flat face. With `by_area`, the quantile is of the face's area,
-// not of its curved facet edges: the tessellation is finest where the face is most curved, and a
-// face that turns little but sharply in one corner is then not meshed at that radius all over (one
-// face of pyocc_surf114 took 200k triangles so). A face that turns far keeps the plain quantile:
-// elements larger than its radius where it turns put chords across it that its neighbours' meshes
-// share (caxif_as1-tu-203's two half shells).
-double curvature_radius(const CadFace& f, bool by_area) {
+// does not decide it; infinite on a flat face.
+double curvature_radius(const CadFace& f) {
   const size_t n = f.triangles.size() / 3;
   auto point = [&](int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; };
   auto normal = [&](size_t t) {
@@ -412,7 +405,7 @@ double curvature_radius(const CadFace& f, bool by_area) {
     return le > 0 ? std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / le : 0.0;
   };
   std::unordered_map<unsigned long long, size_t> first;  // directed edge -> the corner opposite it
-  std::vector<std::pair<double, double>> radii;  // radius, weight
+  std::vector<double> radii;
   for (size_t t = 0; t < n; ++t)
     for (size_t c = 0; c < 3; ++c) {
       const int32_t va = f.triangles[3 * t + c], vb = f.triangles[3 * t + (c + 1) % 3];
@@ -427,27 +420,12 @@ double curvature_radius(const CadFace& f, bool by_area) {
       if (!(angle > 1e-3)) continue;
       const double h0 = off_line(point(f.triangles[it->second]), point(va), point(vb));
       const double h1 = off_line(point(f.triangles[3 * t + (c + 2) % 3]), point(va), point(vb));
-      const double edge = distance(point(va), point(vb));
-      radii.emplace_back(0.5 * (h0 + h1) / angle, 0.5 * edge * (h0 + h1));  // the two facets' area
+      radii.push_back(0.5 * (h0 + h1) / angle);
     }
   if (radii.size() < 4) return std::numeric_limits<double>::infinity();
-  if (!by_area) {
-    const size_t q = radii.size() / 10;
-    std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(q), radii.end());
-    return radii[q].first;
-  }
-  double total = 0;
-  for (size_t t = 0; t < n; ++t) {
-    const double *a = point(f.triangles[3 * t]), *b = point(f.triangles[3 * t + 1]), *c = point(f.triangles[3 * t + 2]);
-    total += 0.5 * off_line(c, a, b) * distance(a, b);
-  }
-  std::sort(radii.begin(), radii.end());
-  // Each facet edge weighs its two facets and each facet has three edges: all the face's facet
-  // edges, curved or flat, weigh about 3 x its area.
-  double below = 0;
-  for (const auto& [r, w] : radii)
-    if ((below += w) >= kCurvatureQuantile * 3 * total) return r;
-  return std::numeric_limits<double>::infinity();
+  const size_t q = radii.size() / 10;
+  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(q), radii.end());
+  return radii[q];
 }
 
 // Whether all the face's facet normals lie within kLittleTurn of their area-weighted mean: a fillet
@@ -505,9 +483,8 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     // holes keep their six segments through their closed edges (discretise_model_edges).
     // Curvature may ask for smaller elements than narrowness: a tube needs its six segments around
     // whatever its length, while a long narrow strip cannot ask for millions along it.
-    const bool little = turns_little(f);
-    const double r = curvature_radius(f, little);
-    const double curved = width < kWrapWidth * r && little ? std::sqrt(r * h) : r;
+    const double r = curvature_radius(f);
+    const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
     const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
     sizes[k] = std::clamp(std::min(narrow, curved), h / kSmallestRadiusFraction, h);
   }
