@@ -481,190 +481,225 @@ double GaussNewton::rescale(VectorXc& z, double s, double& energy_after) {
   return a;
 }
 
-bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
-                             const Eigen::MatrixXd& C, const Eigen::VectorXd& rotation, Eigen::VectorXd& delta) {
-  // Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
-  // by a complex factorisation of the complex-linear part of an earlier Gauss-Newton matrix (the
-  // constraint preconditioner keeps every iterate in the null space of C). The real 2n matrix
-  // itself was factorised before: measured at 1M triangles, s = 1, its factor took the peak from
-  // 1.35 GB (s = 0) to 3.1 GB; the complex one is the s = 0 factor's storage, refactorised in
-  // place, and costs 4-8 CG iterations per step where the real one cost 1-3.
-  const Index nr = 2 * static_cast<Index>(Kc.rows());
-  auto refactor = [&] {
-    auto shift_of = [&](Index i) { return 0.5 * (shift[2 * i] + shift[2 * i + 1]); };
-    if (!p_of_.empty()) {
-      std::fill(Kpp_.valuePtr(), Kpp_.valuePtr() + Kpp_.nonZeros(), Complex(0, 0));
-      for (Index v = 0; v < Kc_.nonZeros(); ++v)
-        if (kc_to_pp_[static_cast<size_t>(v)] >= 0) Kpp_.valuePtr()[kc_to_pp_[static_cast<size_t>(v)]] = Kc_.valuePtr()[v];
-      for (Index u = 0; u < nr / 2; ++u) {
-        const Index pu = p_of_[static_cast<size_t>(u)];
-        if (pu >= 0) Kpp_.coeffRef(pu, pu) += shift_of(u);
-      }
-      chol_->factorize(Kpp_);
-      Eigen::MatrixXcd Kpx = Eigen::MatrixXcd::Zero(Kpp_.rows(), 2);
-      for (const SplitEntry& e : px_entries_) Kpx(e.p, e.x) = Kc_.valuePtr()[e.value];
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) Sx_(i, j) = Kc_.coeff(split_[i], split_[j]) + (i == j ? shift_of(split_[i]) : 0.0);
-      Wx_ = chol_->solve(Kpx);
-      Sx_ -= Kpx.adjoint() * Wx_;
-    } else {
-      SpMatC Kd = Kc;
-      for (Index i = 0; i < nr / 2; ++i) Kd.coeffRef(i, i) += shift_of(i);
-      chol_->factorize(Kd);
+// Refactorises the preconditioner: the complex-linear part Kc plus the mean of each unknown's two
+// real shifts, in the shared factor's K_PP (with its Schur complement on the split pair) or in the
+// own factor.
+void GaussNewton::refactor(const SpMatC& Kc, const Eigen::VectorXd& shift) {
+  const Index n = static_cast<Index>(Kc.rows());
+  auto shift_of = [&](Index i) { return 0.5 * (shift[2 * i] + shift[2 * i + 1]); };
+  if (!p_of_.empty()) {
+    std::fill(Kpp_.valuePtr(), Kpp_.valuePtr() + Kpp_.nonZeros(), Complex(0, 0));
+    for (Index v = 0; v < Kc_.nonZeros(); ++v)
+      if (kc_to_pp_[static_cast<size_t>(v)] >= 0) Kpp_.valuePtr()[kc_to_pp_[static_cast<size_t>(v)]] = Kc_.valuePtr()[v];
+    for (Index u = 0; u < n; ++u) {
+      const Index pu = p_of_[static_cast<size_t>(u)];
+      if (pu >= 0) Kpp_.coeffRef(pu, pu) += shift_of(u);
     }
-    // From here on the factor only preconditions: in single precision it halves the bytes each
-    // application reads (they are memory-bound; the CG stays in double). Wx_ and Sx_ are taken in
-    // double first: Sx_ is a difference of nearly equal terms (K is singular along translations),
-    // and with the exact Wx_ the preconditioner stays Hermitian positive definite whatever the
-    // float solve's rounding (it is [I -W; 0 I] diag(M_PP^-1, Sx^-1) [I 0; -W^H I]).
-    chol_->keep_single_precision();
-    factored_ = true;
-    ++refactorisations_;
-    units_valid_ = false;
-  };
-  // Refactorise when the factor has gone stale (kRefactorExtra). A count, not a timing: results
-  // must not depend on machine load.
-  bool fresh = baseline_pending_;  // refactorised at the end of the last step: as good as fresh
-  if (!factored_ || (!fresh && last_pcg_ > fresh_pcg_ + kRefactorExtra)) {
-    refactor();
-    fresh = true;
+    chol_->factorize(Kpp_);
+    Eigen::MatrixXcd Kpx = Eigen::MatrixXcd::Zero(Kpp_.rows(), 2);
+    for (const SplitEntry& e : px_entries_) Kpx(e.p, e.x) = Kc_.valuePtr()[e.value];
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) Sx_(i, j) = Kc_.coeff(split_[i], split_[j]) + (i == j ? shift_of(split_[i]) : 0.0);
+    Wx_ = chol_->solve(Kpx);
+    Sx_ -= Kpx.adjoint() * Wx_;
+  } else {
+    SpMatC Kd = Kc;
+    for (Index i = 0; i < n; ++i) Kd.coeffRef(i, i) += shift_of(i);
+    chol_->factorize(Kd);
   }
-  // The unknowns the constraint rows touch (the gauge's two uses, usually), and their real columns
-  // that are not zero: C y reads only those.
-  std::vector<Index> touched, c_cols;
-  for (Index k = 0; k < nr / 2; ++k)
-    for (Index j = 0; j < C.rows(); ++j)
-      if (C(j, 2 * k) != 0.0 || C(j, 2 * k + 1) != 0.0) {
-        touched.push_back(k);
-        break;
-      }
-  for (Index k : touched)
-    for (Index col : {2 * k, 2 * k + 1})
-      if ((C.col(col).array() != 0.0).any()) c_cols.push_back(col);
-  Eigen::MatrixXd W;
-  Eigen::FullPivLU<Eigen::MatrixXd> Sc;
-  auto project = [&] {
-    if (C.rows() == 0) return;
-    if (touched.size() > kMaxCachedUnits) {
-      this->precondition(C.transpose(), W);
-    } else {
-      // W = M^{-1} C^T from M^{-1} e_k, kept while the factor is: the preconditioner is
-      // complex-linear, so a row's column is a complex combination of those (a solve per step
-      // saved; the rows' direction changes with the layout, their unknowns do not).
-      if (touched != unit_uses_) {
-        unit_uses_ = touched;
-        units_valid_ = false;
-      }
-      if (!units_valid_) {
-        Eigen::MatrixXd E = Eigen::MatrixXd::Zero(nr, static_cast<Index>(touched.size()));
-        for (size_t q = 0; q < touched.size(); ++q) E(2 * touched[q], static_cast<Index>(q)) = 1.0;
-        this->precondition(E, units_);
-        units_valid_ = true;
-      }
-      W.setZero(nr, C.rows());
+  // From here on the factor only preconditions: in single precision it halves the bytes each
+  // application reads (they are memory-bound; the CG stays in double). Wx_ and Sx_ are taken in
+  // double first: Sx_ is a difference of nearly equal terms (K is singular along translations),
+  // and with the exact Wx_ the preconditioner stays Hermitian positive definite whatever the
+  // float solve's rounding (it is [I -W; 0 I] diag(M_PP^-1, Sx^-1) [I 0; -W^H I]).
+  chol_->keep_single_precision();
+  factored_ = true;
+  ++refactorisations_;
+  units_valid_ = false;
+}
+
+// Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
+// by a complex factorisation of the complex-linear part of an earlier Gauss-Newton matrix (the
+// constraint preconditioner keeps every iterate in the null space of C). The real 2n matrix
+// itself was factorised before: measured at 1M triangles, s = 1, its factor took the peak from
+// 1.35 GB (s = 0) to 3.1 GB; the complex one is the s = 0 factor's storage, refactorised in
+// place, and costs 4-8 CG iterations per step where the real one cost 1-3.
+class GaussNewton::ProjectedCg {
+ public:
+  ProjectedCg(GaussNewton& gn, const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::MatrixXd& C,
+              const Eigen::VectorXd& rotation)
+      : gn_(gn), Kc_(Kc), S_(S), shift_(shift), C_(C), rotation_(rotation), nr_(2 * static_cast<Index>(Kc.rows())) {
+    // The unknowns the constraint rows touch (the gauge's two uses, usually), and their real
+    // columns that are not zero: C y reads only those.
+    for (Index k = 0; k < nr_ / 2; ++k)
       for (Index j = 0; j < C.rows(); ++j)
-        for (size_t q = 0; q < touched.size(); ++q) {
-          const Index k = touched[q];
-          const Complex c(C(j, 2 * k), C(j, 2 * k + 1));
-          if (c == Complex(0, 0)) continue;
-          as_complex_col(W, j) += c * as_complex_col(units_, static_cast<Index>(q));
+        if (C(j, 2 * k) != 0.0 || C(j, 2 * k + 1) != 0.0) {
+          touched_.push_back(k);
+          break;
         }
+    for (Index k : touched_)
+      for (Index col : {2 * k, 2 * k + 1})
+        if ((C.col(col).array() != 0.0).any()) c_cols_.push_back(col);
+  }
+
+  void project();
+  void deflation();
+  // CG from delta = 0; false when it made no progress with a fresh factor.
+  bool solve(const Eigen::VectorXd& g, Eigen::VectorXd& delta, bool fresh);
+
+ private:
+  void apply(const Eigen::VectorXd& p, Eigen::VectorXd& q) const;
+  double dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
+  void elementwise(const std::function<void(Index, Index)>& body) const { parallel_for(gn_.threads_, nr_, body); }
+  void precondition(const Eigen::VectorXd& rr, Eigen::VectorXd& y);
+
+  GaussNewton& gn_;
+  const SpMatC& Kc_;
+  const Complex* S_;
+  const Eigen::VectorXd& shift_;
+  const Eigen::MatrixXd& C_;
+  const Eigen::VectorXd& rotation_;
+  const Index nr_;
+  std::vector<Index> touched_, c_cols_;
+  Eigen::MatrixXd W_;  // M^{-1} C^T
+  Eigen::FullPivLU<Eigen::MatrixXd> Sc_;  // C W
+  Eigen::MatrixXd zr_m_;
+  Eigen::VectorXd dv_;  // the rotation, projected: the coarse correction's direction
+  double de_ = 0;       // its curvature dv^T A dv
+  bool deflate_ = false;
+};
+
+// W = M^{-1} C^T and the factorised C W, for the current factor.
+void GaussNewton::ProjectedCg::project() {
+  const Eigen::MatrixXd& C = C_;
+  if (C.rows() == 0) return;
+  if (touched_.size() > kMaxCachedUnits) {
+    gn_.precondition(C.transpose(), W_);
+  } else {
+    // W = M^{-1} C^T from M^{-1} e_k, kept while the factor is: the preconditioner is
+    // complex-linear, so a row's column is a complex combination of those (a solve per step
+    // saved; the rows' direction changes with the layout, their unknowns do not).
+    if (touched_ != gn_.unit_uses_) {
+      gn_.unit_uses_ = touched_;
+      gn_.units_valid_ = false;
     }
-    Sc.compute(C * W);
-  };
-  project();
-  const int* outer = Kc.outerIndexPtr();
-  const int* inner = Kc.innerIndexPtr();
-  const Complex* kv = Kc.valuePtr();
-  // q = (H + diag(shift)) p, H p = Kc p + S conj(p) in complex form. Row i of Kc is the conjugate
-  // of its column i (Hermitian) and row i of S its column i (symmetric): each q_i is gathered from
-  // one column, so the rows split over threads with the same sums whatever their number.
-  auto apply = [&](const Eigen::VectorXd& p, Eigen::VectorXd& q) {
-    const Eigen::Map<const VectorXc> pc = as_complex(p);
-    Eigen::Map<VectorXc> qc = as_complex(q);
-    parallel_for(threads_, static_cast<Index>(pc.size()), [&](Index i0, Index i1) {
-      for (Index i = i0; i < i1; ++i) {
-        Complex acc(0, 0);
-        for (int v = outer[i]; v < outer[i + 1]; ++v) {
-          const Complex x = pc[inner[v]];
-          acc += cmul(kv[v], x) + S[v] * std::conj(x);
-        }
-        qc[i] = acc + Complex(shift[2 * i] * pc[i].real(), shift[2 * i + 1] * pc[i].imag());
+    if (!gn_.units_valid_) {
+      Eigen::MatrixXd E = Eigen::MatrixXd::Zero(nr_, static_cast<Index>(touched_.size()));
+      for (size_t q = 0; q < touched_.size(); ++q) E(2 * touched_[q], static_cast<Index>(q)) = 1.0;
+      gn_.precondition(E, gn_.units_);
+      gn_.units_valid_ = true;
+    }
+    W_.setZero(nr_, C.rows());
+    for (Index j = 0; j < C.rows(); ++j)
+      for (size_t q = 0; q < touched_.size(); ++q) {
+        const Index k = touched_[q];
+        const Complex c(C(j, 2 * k), C(j, 2 * k + 1));
+        if (c == Complex(0, 0)) continue;
+        as_complex_col(W_, j) += c * as_complex_col(gn_.units_, static_cast<Index>(q));
       }
-    });
-  };
-  Eigen::VectorXd r(nr), zr(nr), p(nr), q(nr);
-  Eigen::MatrixXd zr_m;
-  double rz_stale = 0;
-  // CG's vector passes (at 1M triangles each reads 8-16 MB: together as much time as a float
-  // solve) split over threads: element-wise updates, and dot products summed over kBlocks fixed
-  // blocks in block order, so the same bits for any thread count.
-  auto dot = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
-    double part[kBlocks] = {};
-    parallel_for(threads_, kBlocks, [&](Index b0, Index b1) {
-      for (Index blk = b0; blk < b1; ++blk) {
-        const Index i0 = nr * blk / kBlocks, i1 = nr * (blk + 1) / kBlocks;
-        part[blk] = x.segment(i0, i1 - i0).dot(y.segment(i0, i1 - i0));
+  }
+  Sc_.compute(C * W_);
+}
+
+// q = (H + diag(shift)) p, H p = Kc p + S conj(p) in complex form. Row i of Kc is the conjugate
+// of its column i (Hermitian) and row i of S its column i (symmetric): each q_i is gathered from
+// one column, so the rows split over threads with the same sums whatever their number.
+void GaussNewton::ProjectedCg::apply(const Eigen::VectorXd& p, Eigen::VectorXd& q) const {
+  const int* outer = Kc_.outerIndexPtr();
+  const int* inner = Kc_.innerIndexPtr();
+  const Complex* kv = Kc_.valuePtr();
+  const Complex* S = S_;
+  const Eigen::VectorXd& shift = shift_;
+  const Eigen::Map<const VectorXc> pc = as_complex(p);
+  Eigen::Map<VectorXc> qc = as_complex(q);
+  parallel_for(gn_.threads_, static_cast<Index>(pc.size()), [&](Index i0, Index i1) {
+    for (Index i = i0; i < i1; ++i) {
+      Complex acc(0, 0);
+      for (int v = outer[i]; v < outer[i + 1]; ++v) {
+        const Complex x = pc[inner[v]];
+        acc += cmul(kv[v], x) + S[v] * std::conj(x);
       }
-    }, 1);
-    double sum = 0;
-    for (double v : part) sum += v;
-    return sum;
-  };
-  auto elementwise = [&](const std::function<void(Index, Index)>& body) { parallel_for(threads_, nr, body); };
-  // The energy does not change when the layout turns, and the step matrix is the Gauss-Newton one:
-  // along the rotation v its curvature is the energy (the residuals turn with the layout), a
-  // thousandth of the complex-linear part's (1M plate, s = 1: v^T A v / v^T M v = 0.001). The gauge
-  // row only holds the direction between two uses, so rotations bent near them stay in the step's
-  // space with a small Rayleigh quotient (CG's Ritz values reach 0.04 on the plate against 0.15 on
-  // the disk), and CG spends iterations on them. The preconditioner gets a coarse correction along
-  // v, projected into the constraint rows' null space: B = M^-1 + v v^T / (v^T A v), symmetric
-  // positive definite when M is, which lifts that mode's eigenvalue to about 1. It costs one
-  // operator product per step and a dot product and an update per application; with C v = 0 the
-  // projection's W = B C^T = M^-1 C^T is unchanged. The balancing form (Q + (I - QA) M^-1 (I - AQ))
-  // took a few fewer CG iterations for one more preconditioner solve per step: measured in
-  // docs/PERFORMANCE.md.
-  Eigen::VectorXd dv;
-  double de = 0;
-  bool deflate = false;
-  auto deflation = [&] {
-    deflate = false;
-    if (rotation.size() != nr) return;
-    dv = rotation;
-    if (C.rows() > 0) {
-      Eigen::VectorXd cv = Eigen::VectorXd::Zero(C.rows());
-      for (Index k : c_cols) cv += C.col(k) * dv[k];
-      dv -= W * Sc.solve(cv);
+      qc[i] = acc + Complex(shift[2 * i] * pc[i].real(), shift[2 * i + 1] * pc[i].imag());
     }
-    Eigen::VectorXd av(nr);
-    apply(dv, av);
-    de = dot(dv, av);
-    deflate = de > 0 && std::isfinite(de);
-  };
-  auto precondition = [&](const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
-    this->precondition(rr, zr_m);
-    if (deflate) {
-      const double a = dot(dv, rr) / de;
-      elementwise([&](Index i0, Index i1) {
-        for (Index i = i0; i < i1; ++i) zr_m(i, 0) += a * dv[i];
-      });
+  });
+}
+
+// CG's vector passes (at 1M triangles each reads 8-16 MB: together as much time as a float solve)
+// split over threads: element-wise updates, and dot products summed over kBlocks fixed blocks in
+// block order, so the same bits for any thread count.
+double GaussNewton::ProjectedCg::dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
+  const Index nr = nr_;
+  double part[kBlocks] = {};
+  parallel_for(gn_.threads_, kBlocks, [&](Index b0, Index b1) {
+    for (Index blk = b0; blk < b1; ++blk) {
+      const Index i0 = nr * blk / kBlocks, i1 = nr * (blk + 1) / kBlocks;
+      part[blk] = x.segment(i0, i1 - i0).dot(y.segment(i0, i1 - i0));
     }
-    y.resize(nr);
-    if (C.rows() == 0) {
-      elementwise([&](Index i0, Index i1) { y.segment(i0, i1 - i0) = zr_m.col(0).segment(i0, i1 - i0); });
-      return;
-    }
-    Eigen::VectorXd cy = Eigen::VectorXd::Zero(C.rows());
-    for (Index k : c_cols) cy += C.col(k) * zr_m(k, 0);
-    const Eigen::VectorXd t = Sc.solve(cy);
+  }, 1);
+  double sum = 0;
+  for (double v : part) sum += v;
+  return sum;
+}
+
+// The energy does not change when the layout turns, and the step matrix is the Gauss-Newton one:
+// along the rotation v its curvature is the energy (the residuals turn with the layout), a
+// thousandth of the complex-linear part's (1M plate, s = 1: v^T A v / v^T M v = 0.001). The gauge
+// row only holds the direction between two uses, so rotations bent near them stay in the step's
+// space with a small Rayleigh quotient (CG's Ritz values reach 0.04 on the plate against 0.15 on
+// the disk), and CG spends iterations on them. The preconditioner gets a coarse correction along
+// v, projected into the constraint rows' null space: B = M^-1 + v v^T / (v^T A v), symmetric
+// positive definite when M is, which lifts that mode's eigenvalue to about 1. It costs one
+// operator product per step and a dot product and an update per application; with C v = 0 the
+// projection's W = B C^T = M^-1 C^T is unchanged. The balancing form (Q + (I - QA) M^-1 (I - AQ))
+// took a few fewer CG iterations for one more preconditioner solve per step: measured in
+// docs/PERFORMANCE.md.
+void GaussNewton::ProjectedCg::deflation() {
+  deflate_ = false;
+  if (rotation_.size() != nr_) return;
+  dv_ = rotation_;
+  if (C_.rows() > 0) {
+    Eigen::VectorXd cv = Eigen::VectorXd::Zero(C_.rows());
+    for (Index k : c_cols_) cv += C_.col(k) * dv_[k];
+    dv_ -= W_ * Sc_.solve(cv);
+  }
+  Eigen::VectorXd av(nr_);
+  apply(dv_, av);
+  de_ = dot(dv_, av);
+  deflate_ = de_ > 0 && std::isfinite(de_);
+}
+
+// y = the projected, deflated preconditioner applied to rr.
+void GaussNewton::ProjectedCg::precondition(const Eigen::VectorXd& rr, Eigen::VectorXd& y) {
+  gn_.precondition(rr, zr_m_);
+  if (deflate_) {
+    const double a = dot(dv_, rr) / de_;
     elementwise([&](Index i0, Index i1) {
-      for (Index i = i0; i < i1; ++i) y[i] = zr_m(i, 0) - W.row(i).dot(t);
+      for (Index i = i0; i < i1; ++i) zr_m_(i, 0) += a * dv_[i];
     });
-  };
-  deflation();
+  }
+  y.resize(nr_);
+  if (C_.rows() == 0) {
+    elementwise([&](Index i0, Index i1) { y.segment(i0, i1 - i0) = zr_m_.col(0).segment(i0, i1 - i0); });
+    return;
+  }
+  Eigen::VectorXd cy = Eigen::VectorXd::Zero(C_.rows());
+  for (Index k : c_cols_) cy += C_.col(k) * zr_m_(k, 0);
+  const Eigen::VectorXd t = Sc_.solve(cy);
+  elementwise([&](Index i0, Index i1) {
+    for (Index i = i0; i < i1; ++i) y[i] = zr_m_(i, 0) - W_.row(i).dot(t);
+  });
+}
+
+// CG in phases: one per factor. A stale factor gets as many iterations as the last fresh one
+// needed plus kRefactorExtra, then it is refactorised (what the extra iterations would cost) and
+// CG goes on from delta.
+bool GaussNewton::ProjectedCg::solve(const Eigen::VectorXd& g, Eigen::VectorXd& delta, bool fresh) {
+  const Index nr = nr_;
+  Eigen::VectorXd r(nr), zr(nr), p(nr), q(nr);
+  double rz_stale = 0;
   delta.setZero(nr);
   r = -g;
-  last_pcg_ = 0;
+  gn_.last_pcg_ = 0;
   double target = 0;  // on r.z, relative to its start: kCgTolerance
   for (int phase = 0;; ++phase) {
     precondition(r, zr);
@@ -678,10 +713,8 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
       target *= rz / rz_stale;
     }
     bool converged = rz <= target;
-    // A stale factor gets as many iterations as the last fresh one needed plus kRefactorExtra,
-    // then it is refactorised (what the extra iterations would cost).
     const bool baseline = phase == 0 && fresh;  // this count is the fresh factor's
-    const int limit = baseline ? kMaxCgIterations : std::min(kMaxCgIterations, fresh_pcg_ + kRefactorExtra);
+    const int limit = baseline ? kMaxCgIterations : std::min(kMaxCgIterations, gn_.fresh_pcg_ + kRefactorExtra);
     int its = 0;
     for (; its < limit && !converged; ++its) {
       apply(p, q);
@@ -696,8 +729,8 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
       });
       precondition(r, zr);
       const double rz_new = dot(r, zr);
-      ++pcg_iterations_;
-      ++last_pcg_;
+      ++gn_.pcg_iterations_;
+      ++gn_.last_pcg_;
       converged = !(rz_new > target);
       const double beta = rz_new / rz;
       elementwise([&](Index i0, Index i1) {
@@ -712,19 +745,34 @@ bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::Ve
       rz_stale = 0;
     }
     if (baseline) {
-      fresh_pcg_ = its;
-      baseline_pending_ = false;
+      gn_.fresh_pcg_ = its;
+      gn_.baseline_pending_ = false;
     }
     if (converged) return true;
     // Every CG iterate lowers the quadratic model, so an unfinished one is still a descent
     // direction (the line search sizes it); a stale factor is refactorised first.
     if (fresh) return delta.squaredNorm() > 0;
-    refactor();
+    gn_.refactor(Kc_, shift_);
     fresh = true;
-    baseline_pending_ = true;  // the next step measures the new factor
+    gn_.baseline_pending_ = true;  // the next step measures the new factor
     project();
     deflation();
   }
+}
+
+bool GaussNewton::solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
+                             const Eigen::MatrixXd& C, const Eigen::VectorXd& rotation, Eigen::VectorXd& delta) {
+  // Refactorise when the factor has gone stale (kRefactorExtra). A count, not a timing: results
+  // must not depend on machine load.
+  bool fresh = baseline_pending_;  // refactorised at the end of the last step: as good as fresh
+  if (!factored_ || (!fresh && last_pcg_ > fresh_pcg_ + kRefactorExtra)) {
+    refactor(Kc, shift);
+    fresh = true;
+  }
+  ProjectedCg cg(*this, Kc, S, shift, C, rotation);
+  cg.project();
+  cg.deflation();
+  return cg.solve(g, delta, fresh);
 }
 
 bool GaussNewton::share_factor(SparseCholesky& chol, Index x0, Index x1) {

@@ -171,6 +171,9 @@ class GaussNewton {
   // infinitesimal rotation over the step's unknowns (real form), which CG deflates; empty: none.
   bool solve_step(const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::VectorXd& g,
                   const Eigen::MatrixXd& C, const Eigen::VectorXd& rotation, Eigen::VectorXd& delta);
+  class ProjectedCg;  // the CG of solve_step (gauss_newton.cpp)
+  // Refactorises the preconditioner on Kc plus the shift.
+  void refactor(const SpMatC& Kc, const Eigen::VectorXd& shift);
   // Kc_, S_, the gradient g (complex: J^H r, Re and Im interleaved in the real CG) and the energy
   // at z; also the UV base length of every half-edge (len_), against which a step's rho change is
   // measured.
