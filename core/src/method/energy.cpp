@@ -81,16 +81,6 @@ std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<doub
   return sigma;
 }
 
-std::vector<double> compute_rho(const Topology& tp, const Coefficients& c, const VectorXc& z) {
-  std::vector<double> rho(c.length.size(), 1.0);
-  for (size_t h = 0; h < rho.size(); ++h) {
-    const Index u1 = tp.corner_use[h], u2 = tp.corner_use[static_cast<size_t>(HalfEdges::next(static_cast<Index>(h)))];
-    const double d = std::abs(z[u2] - z[u1]);
-    if (d > 0 && c.length[h] > 0) rho[h] = c.length[h] / d;
-  }
-  return rho;
-}
-
 std::vector<double> compute_weights(const Topology& tp, const Coefficients& c, double k, int threads) {
   return weights(tp, c, k, use_corners(tp), threads);
 }

@@ -12,9 +12,6 @@ namespace wefm {
 // sigma_h = alpha_h + i beta_h rho_h^s for every half-edge (rho = 1 when rho is empty or s == 0).
 std::vector<Complex> compute_sigma(const Coefficients& c, const std::vector<double>& rho, double s, int threads = 1);
 
-// rho_h = L_h / |z_I2 - z_I1| from a layout z (normalised units); degenerate UV edges give rho = 1.
-std::vector<double> compute_rho(const Topology& topo, const Coefficients& c, const VectorXc& z);
-
 // w_h of eq. 9: (1/beta_h) (sum of 1/beta over the half-edges opposite the same use)^(-k).
 std::vector<double> compute_weights(const Topology& topo, const Coefficients& c, double k, int threads = 1);
 
