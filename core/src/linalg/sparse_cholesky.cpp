@@ -4,12 +4,12 @@
 
 #include <Eigen/SparseCholesky>
 #include <atomic>
-#include <chrono>
 #include <limits>
 #include <string>
 #include <type_traits>
 #include <dlfcn.h>
 
+#include "wefm/core/sys/clock.hpp"
 #include "wefm/core/sys/error.hpp"
 #include "wefm/core/linalg/float_supernodal_solve.hpp"
 #include "wefm/core/sys/huge_pages.hpp"
@@ -20,10 +20,6 @@
 #endif
 
 namespace wefm {
-
-namespace {
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-}  // namespace
 
 void set_blas_threads(int threads) {
   using SetFn = void (*)(int);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -17,6 +16,7 @@
 #include <tuple>
 
 #include "wefm/core/method/caller_rows.hpp"
+#include "wefm/core/sys/clock.hpp"
 #include "wefm/core/solve/early_analysis.hpp"
 #include "wefm/core/method/energy.hpp"
 #include "wefm/core/sys/error.hpp"
@@ -29,8 +29,6 @@
 namespace wefm {
 
 namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 // Continuation steps below the target s end at this multiple of rho_tolerance.
 constexpr double kWayUpTolerance = 10.0;

@@ -5,20 +5,18 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
 
 #include "wefm/core/method/energy.hpp"
+#include "wefm/core/sys/clock.hpp"
 #include "wefm/core/sys/error.hpp"
 #include "wefm/core/sys/parallel.hpp"
 
 namespace wefm {
 
 namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
   for (int j = 0; j < ne; ++j)
