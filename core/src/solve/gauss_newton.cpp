@@ -900,6 +900,53 @@ double GaussNewton::first_flip(const VectorXc& z, const VectorXc& dz) const {
   return t_min;
 }
 
+// The step's constraint rows in real form: Re and Im of each complex row over the reduced
+// unknowns, then the gauge row: whole below s = 1 (it holds the vector, size too), else only its
+// direction.
+Eigen::MatrixXd GaussNewton::step_constraints(const VectorXc& z, double s, Index nr) const {
+  const bool gauge = !gauge_row_.terms.empty();
+  const bool whole = gauge && s < 1.0;  // hold the vector (size too), or only its direction
+  const Index m = 2 * static_cast<Index>(rows_.size()) + (gauge ? (whole ? 2 : 1) : 0);
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nr);
+  auto add_complex_row = [&](Index r0, const LinearRow& row) {
+    for (auto& [k, gk] : row.terms) {
+      C(r0, 2 * k) += gk.real();
+      C(r0, 2 * k + 1) += -gk.imag();
+      C(r0 + 1, 2 * k) += gk.imag();
+      C(r0 + 1, 2 * k + 1) += gk.real();
+    }
+  };
+  for (size_t r = 0; r < rows_.size(); ++r) add_complex_row(2 * static_cast<Index>(r), rows_[r]);
+  if (whole) {
+    add_complex_row(m - 2, gauge_row_);
+  } else if (gauge) {
+    // Im(conj(v) sum g_k dy_k) = 0 with v the current vector: the step turns nothing.
+    const VectorXc y = identity_ ? z : wefm::reduce(sub_, z);
+    Complex v{0, 0};
+    for (auto& [k, gk] : gauge_row_.terms) v += gk * y[k];
+    const Complex cv = std::abs(v) > 0 ? std::conj(v) / std::abs(v) : Complex(1, 0);
+    for (auto& [k, gk] : gauge_row_.terms) {
+      const Complex cc = cv * gk;
+      C(m - 1, 2 * k) += cc.imag();
+      C(m - 1, 2 * k + 1) += cc.real();
+    }
+  }
+  return C;
+}
+
+// The layout's infinitesimal rotation i (z - mean) over the step's unknowns, which the step's CG
+// deflates (solve_step); empty when rotation_deflation() is off.
+Eigen::VectorXd GaussNewton::step_rotation(const VectorXc& z, Index nr) const {
+  Eigen::VectorXd rotation;
+  if (rotation_deflation()) {
+    const Complex mean = z.mean();
+    const VectorXc turn = Complex(0, 1) * (z.array() - mean).matrix();
+    rotation.resize(nr);
+    as_complex(rotation) = identity_ ? turn : wefm::reduce(sub_, turn);
+  }
+  return rotation;
+}
+
 double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
   accepted_sums_valid_ = false;
   double t0 = now();
@@ -931,34 +978,7 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
   const Complex* S = identity_ ? S_.data() : Sr_values.data();
   t_assembly_ += now() - t0;
   const Index nr = 2 * static_cast<Index>(Kc.rows());
-  // Real constraint rows: Re and Im of each complex row over the reduced unknowns.
-  const bool gauge = !gauge_row_.terms.empty();
-  const bool whole = gauge && s < 1.0;  // hold the vector (size too), or only its direction
-  const Index m = 2 * static_cast<Index>(rows_.size()) + (gauge ? (whole ? 2 : 1) : 0);
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, nr);
-  auto add_complex_row = [&](Index r0, const LinearRow& row) {
-    for (auto& [k, gk] : row.terms) {
-      C(r0, 2 * k) += gk.real();
-      C(r0, 2 * k + 1) += -gk.imag();
-      C(r0 + 1, 2 * k) += gk.imag();
-      C(r0 + 1, 2 * k + 1) += gk.real();
-    }
-  };
-  for (size_t r = 0; r < rows_.size(); ++r) add_complex_row(2 * static_cast<Index>(r), rows_[r]);
-  if (whole) {
-    add_complex_row(m - 2, gauge_row_);
-  } else if (gauge) {
-    // Im(conj(v) sum g_k dy_k) = 0 with v the current vector: the step turns nothing.
-    const VectorXc y = identity_ ? z : wefm::reduce(sub_, z);
-    Complex v{0, 0};
-    for (auto& [k, gk] : gauge_row_.terms) v += gk * y[k];
-    const Complex cv = std::abs(v) > 0 ? std::conj(v) / std::abs(v) : Complex(1, 0);
-    for (auto& [k, gk] : gauge_row_.terms) {
-      const Complex cc = cv * gk;
-      C(m - 1, 2 * k) += cc.imag();
-      C(m - 1, 2 * k + 1) += cc.real();
-    }
-  }
+  const Eigen::MatrixXd C = step_constraints(z, s, nr);
   // The real matrix's diagonal: Kc_ii +- Re S_ii (S_ii conj acts as diag(Re, -Re) on (Re, Im)).
   Eigen::VectorXd diag(nr);
   for (Index i = 0; i < nr / 2; ++i) {
@@ -966,14 +986,7 @@ double GaussNewton::step(VectorXc& z, double s, double& energy_out) {
     diag[2 * i] = Kc.valuePtr()[v].real() + S[v].real();
     diag[2 * i + 1] = Kc.valuePtr()[v].real() - S[v].real();
   }
-  // The layout's infinitesimal rotation i (z - mean), which the step's CG deflates (solve_step).
-  Eigen::VectorXd rotation;
-  if (rotation_deflation()) {
-    const Complex mean = z.mean();
-    const VectorXc turn = Complex(0, 1) * (z.array() - mean).matrix();
-    rotation.resize(nr);
-    as_complex(rotation) = identity_ ? turn : wefm::reduce(sub_, turn);
-  }
+  const Eigen::VectorXd rotation = step_rotation(z, nr);
   const double dmean = diag.mean() > 0 ? diag.mean() : 1.0;
   for (int attempt = 0; attempt < 8; ++attempt) {
     const Eigen::VectorXd shift = (lambda_ * diag).array() + 1e-12 * dmean;

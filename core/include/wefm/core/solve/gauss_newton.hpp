@@ -159,6 +159,8 @@ class GaussNewton {
  private:
   // One damped step; returns the max relative rho change it made.
   double step(VectorXc& z, double s, double& energy_out);
+  Eigen::MatrixXd step_constraints(const VectorXc& z, double s, Index nr) const;
+  Eigen::VectorXd step_rotation(const VectorXc& z, Index nr) const;
   // The smallest t > 0 at which z + t dz flips a triangle that is positive in z (infinity if none).
   double first_flip(const VectorXc& z, const VectorXc& dz) const;
   // The shape barrier's energy at z, and (with Kc_, S_, g) its rows added to the linearisation: a
