@@ -307,39 +307,34 @@ void PartitionedKKT::refine_in_place(const std::vector<LinearRow>& rows, const E
   }
 }
 
-VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f,
-                                   const Eigen::VectorXcd& d, Eigen::VectorXcd& lambda, bool check) {
+// The columns of the reduced system sampled at the probe: for x (2) and each row's C_P^H column,
+// K_PP^{-1} (source) at the probe (Wq) and eta . K_PP^{-1} (source) (Weta); and the rows' terms
+// on x (CX).
+void PartitionedKKT::probed_columns(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, Eigen::MatrixXcd& Wq,
+                                    Eigen::VectorXcd& Weta, Eigen::MatrixXcd& CX) const {
   const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
   const Index N = 2 + m;
-  const Index np = n_ - 2;
-  // g = K_PP^{-1} f_P: the unconstrained response to the right-hand side.
-  const bool has_f = f.squaredNorm() > 0;
-  Eigen::VectorXcd fP(np), g = Eigen::VectorXcd::Zero(np);
-  for (Index u = 0; u < n_; ++u)
-    if (p_index(u) >= 0) fP[p_index(u)] = f[u];
-  if (has_f) g = chol_.solve(fP);
-  // Rows: caller rows then the dense eta row.
-  // W columns restricted to the probe, for x (2) and each row's C_P^H column.
   const Index nq = static_cast<Index>(probe_.size());
-  Eigen::MatrixXcd Wq(nq, N);  // column j: K_PP^{-1} (source j) sampled at the probe
-  Eigen::VectorXcd Weta(N);    // eta . column j
-  Eigen::MatrixXcd CX = Eigen::MatrixXcd::Zero(m, 2);
+  Wq.resize(nq, N);
+  Weta.resize(N);
+  CX = Eigen::MatrixXcd::Zero(m, 2);
   for (int j = 0; j < 2; ++j) {
     Wq.col(j) = col_x_[j].probe;
     Weta[j] = col_x_[j].eta_dot;
   }
+  // Rows: caller rows then the dense eta row.
   for (Index r = 0; r < m; ++r) {
     Eigen::VectorXcd w = Eigen::VectorXcd::Zero(nq);
     Complex we{0, 0};
     if (r < static_cast<Index>(rows.size())) {
-      for (auto& [u, g] : rows[static_cast<size_t>(r)].terms) {
+      for (auto& [u, gk] : rows[static_cast<size_t>(r)].terms) {
         if (u == x_[0] || u == x_[1]) {
-          CX(r, u == x_[0] ? 0 : 1) += g;
+          CX(r, u == x_[0] ? 0 : 1) += gk;
           continue;
         }
         const Column& c = unit_.at(u);
-        w += std::conj(g) * c.probe;
-        we += std::conj(g) * c.eta_dot;
+        w += std::conj(gk) * c.probe;
+        we += std::conj(gk) * c.eta_dot;
       }
     } else {
       w = col_eta_.probe;
@@ -350,12 +345,24 @@ VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eig
     Wq.col(2 + r) = w;
     Weta[2 + r] = we;
   }
+}
+
+// The reduced system M t = rhs over x's two values and the rows' multipliers, with g = K_PP^{-1} f_P
+// (has_f false: f = 0, g unused).
+void PartitionedKKT::reduced_system(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f,
+                                    const Eigen::VectorXcd& d, bool has_f, const Eigen::VectorXcd& g, Eigen::MatrixXcd& M,
+                                    Eigen::VectorXcd& rhs) const {
+  const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
+  const Index N = 2 + m;
+  Eigen::MatrixXcd Wq, CX;  // column j: K_PP^{-1} (source j) sampled at the probe
+  Eigen::VectorXcd Weta;    // eta . column j
+  probed_columns(rows, eta, Wq, Weta, CX);
   // C_P w for row r and column j: sum over row terms of g * w(at use), or eta . w.
   auto CPw = [&](Index r, Index j) -> Complex {
     if (r >= static_cast<Index>(rows.size())) return Weta[j];
     Complex s{0, 0};
-    for (auto& [u, g] : rows[static_cast<size_t>(r)].terms)
-      if (u != x_[0] && u != x_[1]) s += g * Wq(probe_pos_.at(p_index(u)), j);
+    for (auto& [u, gk] : rows[static_cast<size_t>(r)].terms)
+      if (u != x_[0] && u != x_[1]) s += gk * Wq(probe_pos_.at(p_index(u)), j);
     return s;
   };
   auto KXPw = [&](int x, Index j) -> Complex {
@@ -384,8 +391,8 @@ VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eig
     for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, x); it; ++it) s += std::conj(it.value()) * g[static_cast<Index>(it.row())];
     return s;
   };
-  Eigen::MatrixXcd M(N, N);
-  Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(N);
+  M.resize(N, N);
+  rhs = Eigen::VectorXcd::Zero(N);
   rhs[0] = f[x_[0]] - KXPg(0);
   rhs[1] = f[x_[1]] - KXPg(1);
   for (int a = 0; a < 2; ++a)
@@ -397,15 +404,21 @@ VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eig
     for (Index j = 0; j < N; ++j) M(2 + r, j) = (j < 2 ? CX(r, j) : Complex(0, 0)) - CPw(r, j);
     rhs[2 + r] = d[r] - Cg(r);
   }
-  // Entries span many orders of magnitude (K_PP^{-1} is large along near-null directions), so no
-  // relative rank threshold is meaningful: full pivoting, then consistency judged by the residual
-  // relative to |M| |t|. Redundant but consistent constraints pass; contradictory ones do not.
-  // Full pivoting searches the whole remaining block at every step (N^3 / 3 complex magnitudes):
-  // a seam of 500 facet edges (N = 504) took 0.25 s a solve, and a 1M-triangle tube's mode choice
-  // solves six. A well-conditioned M does not need it: partial pivoting on M equilibrated by powers
-  // of two (exact) is kept when its estimated reciprocal condition number is far above rounding
-  // and its residual passes; anything else goes to full pivoting as before. Measured: 4e-10 to 5e-2
-  // on the 1M tube and the real sample's seams, 9e-18 on a candidate whose M is singular.
+}
+
+namespace {
+
+// t with M t = rhs. Entries span many orders of magnitude (K_PP^{-1} is large along near-null
+// directions), so no relative rank threshold is meaningful: full pivoting, then consistency judged
+// by the residual relative to |M| |t|. Redundant but consistent constraints pass; contradictory
+// ones do not (with `check`). Full pivoting searches the whole remaining block at every step
+// (N^3 / 3 complex magnitudes): a seam of 500 facet edges (N = 504) took 0.25 s a solve, and a
+// 1M-triangle tube's mode choice solves six. A well-conditioned M does not need it: partial
+// pivoting on M equilibrated by powers of two (exact) is kept when its estimated reciprocal
+// condition number is far above rounding and its residual passes; anything else goes to full
+// pivoting as before. Measured: 4e-10 to 5e-2 on the 1M tube and the real sample's seams, 9e-18
+// on a candidate whose M is singular.
+Eigen::VectorXcd solve_reduced(const Eigen::MatrixXcd& M, const Eigen::VectorXcd& rhs, bool check) {
   auto residual_ok = [&](const Eigen::VectorXcd& x, double& res, double& scale) {
     res = (M * x - rhs).norm();
     scale = M.cwiseAbs().maxCoeff() * x.norm() + rhs.norm();
@@ -420,14 +433,33 @@ VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eig
   }
   if (!t.allFinite() || (check && !(res <= 1e-9 * scale)))
     fail(Errc::singular, "the constraints contradict each other or leave the layout undetermined (relative KKT residual " + std::to_string(t.allFinite() ? res / scale : 1.0) + ")");
+  return t;
+}
+
+}  // namespace
+
+VectorXc PartitionedKKT::eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f,
+                                   const Eigen::VectorXcd& d, Eigen::VectorXcd& lambda, bool check) {
+  const Index m = static_cast<Index>(rows.size()) + (eta ? 1 : 0);
+  const Index np = n_ - 2;
+  // g = K_PP^{-1} f_P: the unconstrained response to the right-hand side.
+  const bool has_f = f.squaredNorm() > 0;
+  Eigen::VectorXcd fP(np), g = Eigen::VectorXcd::Zero(np);
+  for (Index u = 0; u < n_; ++u)
+    if (p_index(u) >= 0) fP[p_index(u)] = f[u];
+  if (has_f) g = chol_.solve(fP);
+  Eigen::MatrixXcd M;
+  Eigen::VectorXcd rhs;
+  reduced_system(rows, eta, f, d, has_f, g, M, rhs);
+  const Eigen::VectorXcd t = solve_reduced(M, rhs, check);
   // Final solve for the point block with the combined right-hand side.
   Eigen::VectorXcd b = fP - K_PX_ * t.head(2);
   for (Index r = 0; r < m; ++r) {
     const Complex lam = t[2 + r];
     if (lam == Complex(0, 0)) continue;
     if (r < static_cast<Index>(rows.size())) {
-      for (auto& [u, g] : rows[static_cast<size_t>(r)].terms)
-        if (u != x_[0] && u != x_[1]) b[p_index(u)] -= std::conj(g) * lam;
+      for (auto& [u, gk] : rows[static_cast<size_t>(r)].terms)
+        if (u != x_[0] && u != x_[1]) b[p_index(u)] -= std::conj(gk) * lam;
     } else {
       for (Index u = 0; u < n_; ++u)
         if (p_index(u) >= 0) b[p_index(u)] -= (*eta)[u] * lam;

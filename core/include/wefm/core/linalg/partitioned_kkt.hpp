@@ -89,6 +89,10 @@ class PartitionedKKT {
   // One elimination: K z + C^H lambda = f, C z = d. Returns z and writes lambda.
   VectorXc eliminate(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f, const Eigen::VectorXcd& d,
                      Eigen::VectorXcd& lambda, bool check);
+  void probed_columns(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, Eigen::MatrixXcd& Wq, Eigen::VectorXcd& Weta,
+                      Eigen::MatrixXcd& CX) const;
+  void reduced_system(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta, const VectorXc& f, const Eigen::VectorXcd& d,
+                      bool has_f, const Eigen::VectorXcd& g, Eigen::MatrixXcd& M, Eigen::VectorXcd& rhs) const;
   // Makes the cached columns cover every use the rows name (and eta).
   void cover(const std::vector<LinearRow>& rows, const Eigen::VectorXd* eta);
   // Up to three rounds of refinement on the full KKT residual.
