@@ -1,5 +1,5 @@
 // The continuation's preconditioner alone: solves with the single-precision supernodal factor
-// (core/src/float_supernodal_solve.cpp), the step that each CG iteration of a Gauss-Newton step
+// (core/src/linalg/float_supernodal_solve.cpp), the step that each CG iteration of a Gauss-Newton step
 // pays. Its matrix is a magnetic Laplacian of an n x n grid with diagonals (the test matrix of the
 // factorisation tests): Hermitian, complex, with supernodes of every size. n = 700 has 490k unknowns
 // and 41M factor entries, about a 1M-triangle face's K_PP.
@@ -14,8 +14,8 @@
 #include <cstdlib>
 
 #include "magnetic_grid.hpp"
-#include "wefm/core/float_supernodal_solve.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/linalg/float_supernodal_solve.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 int main(int argc, char** argv) {
   using namespace wefm;

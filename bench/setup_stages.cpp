@@ -11,11 +11,11 @@
 #include <functional>
 #include <string>
 
-#include "wefm/core/coefficients.hpp"
-#include "wefm/core/energy.hpp"
-#include "wefm/core/energy_assembler.hpp"
-#include "wefm/core/error.hpp"
-#include "wefm/core/mesh_io.hpp"
+#include "wefm/core/method/coefficients.hpp"
+#include "wefm/core/method/energy.hpp"
+#include "wefm/core/method/energy_assembler.hpp"
+#include "wefm/core/sys/error.hpp"
+#include "wefm/core/mesh/mesh_io.hpp"
 
 using namespace wefm;
 

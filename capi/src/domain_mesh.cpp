@@ -4,7 +4,7 @@
 #include <string>
 
 #include "handles.hpp"
-#include "wefm/core/atomic_file.hpp"
+#include "wefm/core/sys/atomic_file.hpp"
 #include "wefm/core/meshing/domain_mesh.hpp"
 
 struct wefm_domain_mesh {

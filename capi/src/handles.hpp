@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "wefm/core/error.hpp"
-#include "wefm/core/face.hpp"
-#include "wefm/core/mesh_io.hpp"
+#include "wefm/core/sys/error.hpp"
+#include "wefm/core/solve/face.hpp"
+#include "wefm/core/mesh/mesh_io.hpp"
 #include "wefm/wefm.h"
 
 struct wefm_face {

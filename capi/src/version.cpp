@@ -1,5 +1,5 @@
 #include "wefm/wefm.h"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 #define WEFM_STR2(x) #x
 #define WEFM_STR(x) WEFM_STR2(x)

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "wefm/core/trimesh.hpp"
+#include "wefm/core/mesh/trimesh.hpp"
 
 namespace wefm::test {
 

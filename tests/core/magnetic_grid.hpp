@@ -3,7 +3,7 @@
 #include <random>
 #include <vector>
 
-#include "wefm/core/types.hpp"
+#include "wefm/core/sys/types.hpp"
 
 namespace wefm::test {
 

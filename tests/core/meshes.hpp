@@ -3,7 +3,7 @@
 #include <cmath>
 #include <functional>
 
-#include "wefm/core/trimesh.hpp"
+#include "wefm/core/mesh/trimesh.hpp"
 
 namespace wefm::test {
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include "wefm/core/types.hpp"
+#include "wefm/core/sys/types.hpp"
 
 namespace wefm::test {
 

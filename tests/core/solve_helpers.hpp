@@ -2,9 +2,9 @@
 #include <doctest/doctest.h>
 
 #include "meshes.hpp"
-#include "wefm/core/error.hpp"
-#include "wefm/core/face.hpp"
-#include "wefm/core/mesh_io.hpp"
+#include "wefm/core/sys/error.hpp"
+#include "wefm/core/solve/face.hpp"
+#include "wefm/core/mesh/mesh_io.hpp"
 
 namespace wefm::test {
 

@@ -1,4 +1,4 @@
-// AtomicFile (core/include/wefm/core/atomic_file.hpp), behind wefm_face_write_obj and
+// AtomicFile (core/include/wefm/core/sys/atomic_file.hpp), behind wefm_face_write_obj and
 // wefm_domain_mesh_write_obj: a file is replaced whole or not at all.
 #include <doctest/doctest.h>
 #include <signal.h>
@@ -13,8 +13,8 @@
 #include <iterator>
 #include <string>
 
-#include "wefm/core/atomic_file.hpp"
-#include "wefm/core/error.hpp"
+#include "wefm/core/sys/atomic_file.hpp"
+#include "wefm/core/sys/error.hpp"
 
 namespace fs = std::filesystem;
 

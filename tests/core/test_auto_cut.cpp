@@ -6,7 +6,7 @@
 
 #include "closed_meshes.hpp"
 #include "solve_helpers.hpp"
-#include "wefm/core/auto_cut.hpp"
+#include "wefm/core/mesh/auto_cut.hpp"
 
 using namespace wefm;
 

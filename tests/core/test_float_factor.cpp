@@ -11,8 +11,8 @@
 
 #include "magnetic_grid.hpp"
 #include "solve_helpers.hpp"
-#include "wefm/core/float_supernodal_solve.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/linalg/float_supernodal_solve.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 using namespace wefm;
 using wefm::test::same_bits;

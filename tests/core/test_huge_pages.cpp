@@ -11,8 +11,8 @@
 
 #include <doctest/doctest.h>
 
-#include "wefm/core/huge_pages.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/sys/huge_pages.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 #ifdef WEFM_HAVE_CHOLMOD
 #include <SuiteSparse_config.h>
 #endif

@@ -2,7 +2,7 @@
 #include <Eigen/Geometry>
 
 #include "solve_helpers.hpp"
-#include "wefm/core/coefficients.hpp"
+#include "wefm/core/method/coefficients.hpp"
 
 using namespace wefm;
 

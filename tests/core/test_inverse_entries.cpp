@@ -10,7 +10,7 @@
 #include <doctest/doctest.h>
 
 #include "magnetic_grid.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 using namespace wefm;
 

@@ -1,4 +1,4 @@
-// Mesh file reading and writing (core/src/mesh_io*): every accepted OBJ form, exact doubles from
+// Mesh file reading and writing (core/src/mesh/mesh_io*): every accepted OBJ form, exact doubles from
 // OFF and PLY (ASCII and binary, both byte orders), STL corner merging and its count, error
 // messages with line numbers, and the UV OBJ writer reading back exactly.
 #include <doctest/doctest.h>
@@ -10,8 +10,8 @@
 #include <string>
 #include <unistd.h>
 
-#include "wefm/core/error.hpp"
-#include "wefm/core/mesh_io.hpp"
+#include "wefm/core/sys/error.hpp"
+#include "wefm/core/mesh/mesh_io.hpp"
 
 using namespace wefm;
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "solve_helpers.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 using namespace wefm;
 

@@ -11,8 +11,8 @@
 #include <doctest/doctest.h>
 
 #include "magnetic_grid.hpp"
-#include "wefm/core/nested_dissection.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/linalg/nested_dissection.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 using namespace wefm;
 

@@ -3,7 +3,7 @@
 // pay are the ones the rule makes.
 #include <doctest/doctest.h>
 
-#include "wefm/core/ordering_choice.hpp"
+#include "wefm/core/linalg/ordering_choice.hpp"
 
 using namespace wefm;
 

@@ -8,11 +8,11 @@
 #include "meshes.hpp"
 #include "same_bits.hpp"
 #include "solve_helpers.hpp"
-#include "wefm/core/coefficients.hpp"
-#include "wefm/core/early_analysis.hpp"
-#include "wefm/core/energy.hpp"
-#include "wefm/core/float_supernodal_solve.hpp"
-#include "wefm/core/quality.hpp"
+#include "wefm/core/method/coefficients.hpp"
+#include "wefm/core/solve/early_analysis.hpp"
+#include "wefm/core/method/energy.hpp"
+#include "wefm/core/linalg/float_supernodal_solve.hpp"
+#include "wefm/core/method/quality.hpp"
 
 using namespace wefm;
 

@@ -4,10 +4,10 @@
 
 #include "meshes.hpp"
 #include "same_bits.hpp"
-#include "wefm/core/coefficients.hpp"
-#include "wefm/core/energy.hpp"
-#include "wefm/core/partitioned_kkt.hpp"
-#include "wefm/core/topology.hpp"
+#include "wefm/core/method/coefficients.hpp"
+#include "wefm/core/method/energy.hpp"
+#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/mesh/topology.hpp"
 
 using namespace wefm;
 using wefm::test::same_bits;

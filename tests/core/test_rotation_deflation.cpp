@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "solve_helpers.hpp"
-#include "wefm/core/gauss_newton.hpp"
+#include "wefm/core/solve/gauss_newton.hpp"
 
 using namespace wefm;
 

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "solve_helpers.hpp"
-#include "wefm/core/coefficients.hpp"
-#include "wefm/core/shape_barrier.hpp"
+#include "wefm/core/method/coefficients.hpp"
+#include "wefm/core/method/shape_barrier.hpp"
 
 using namespace wefm;
 

@@ -7,8 +7,8 @@
 #include "same_bits.hpp"
 
 #include "magnetic_grid.hpp"
-#include "wefm/core/error.hpp"
-#include "wefm/core/sparse_cholesky.hpp"
+#include "wefm/core/sys/error.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 
 using namespace wefm;
 using wefm::test::same_bits;

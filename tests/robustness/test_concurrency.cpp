@@ -95,7 +95,7 @@ TEST_CASE("8 threads solving their own faces repeatedly give the sequential resu
 
 TEST_CASE("one face's solve on 2 threads (the analysis run ahead on a thread of its own) gives the 1-thread bits") {
   // 151 x 151 vertices: above the size where the analysis runs beside the coefficients
-  // (core/include/wefm/core/early_analysis.hpp), with the boundary term on its loop.
+  // (core/include/wefm/core/solve/early_analysis.hpp), with the boundary term on its loop.
   Job j;
   j.mesh = flat(150);
   j.opt = options();

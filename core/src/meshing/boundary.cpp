@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "wefm/core/error.hpp"
+#include "wefm/core/sys/error.hpp"
 #include "wefm/core/meshing/graded_spacing.hpp"
 
 namespace wefm::meshing {

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <string>
 
-#include "wefm/core/error.hpp"
+#include "wefm/core/sys/error.hpp"
 #include "wefm/core/meshing/free_mesh.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
 #include "wefm/core/meshing/size_field.hpp"
 #include "wefm/core/meshing/transfinite.hpp"
-#include "wefm/core/quality.hpp"
+#include "wefm/core/method/quality.hpp"
 
 namespace wefm::meshing {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "wefm/core/error.hpp"
+#include "wefm/core/sys/error.hpp"
 #include "wefm/core/meshing/frontal.hpp"
 #include "wefm/core/meshing/smoothing.hpp"
 #include "wefm/core/meshing/triangulation.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "wefm/core/error.hpp"
+#include "wefm/core/sys/error.hpp"
 
 namespace wefm::meshing {
 

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "wefm/core/error.hpp"
+#include "wefm/core/sys/error.hpp"
 
 // Internally nodes 0..2 are the super-triangle; the caller's node i is internal i + 3.
 namespace wefm::meshing {

@@ -6,7 +6,7 @@
 // way on its side of the C API.
 #include <vector>
 
-#include "wefm/core/types.hpp"
+#include "wefm/core/sys/types.hpp"
 
 namespace wefm::meshing {
 

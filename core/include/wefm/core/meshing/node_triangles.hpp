@@ -4,7 +4,7 @@
 #include <array>
 #include <vector>
 
-#include "wefm/core/types.hpp"
+#include "wefm/core/sys/types.hpp"
 
 namespace wefm::meshing {
 

@@ -2,7 +2,7 @@
 // Robust geometric predicates for the UV triangulation: a floating-point evaluation with an error
 // bound (after Shewchuk's filter idea), and an exact expansion evaluation when the bound does not
 // settle the sign. Only the sign is exact; the magnitude is the plain floating-point value.
-#include "wefm/core/types.hpp"
+#include "wefm/core/sys/types.hpp"
 
 namespace wefm::meshing {
 

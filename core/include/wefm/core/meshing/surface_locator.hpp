@@ -3,7 +3,7 @@
 // bounding boxes, searched in growing shells until no closer triangle can exist.
 #include <vector>
 
-#include "wefm/core/topology.hpp"
+#include "wefm/core/mesh/topology.hpp"
 
 namespace wefm::meshing {
 

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "wefm/core/meshing/predicates.hpp"
-#include "wefm/core/topology.hpp"
+#include "wefm/core/mesh/topology.hpp"
 
 namespace wefm::meshing {
 
