@@ -1,4 +1,6 @@
 // wefm: command-line front end of the wefm library, built only on the public C header.
+#include <unistd.h>
+
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -10,6 +12,10 @@
 #include "huge_page_malloc.hpp"
 #include "stop.hpp"
 #include "wefm/wefm.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
 
 namespace {
 
@@ -57,6 +63,22 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
+namespace {
+
+// The tool ends without running the libraries' finalisers: its outputs are complete and closed by
+// then (OutputFile), and OpenBLAS's finaliser joins OpenBLAS's own pool threads, one of which, under
+// an address-space limit (`ulimit -v`), retries the allocation of its work buffer without end: the
+// process would hang at exit after having reported its result.
+[[noreturn]] void end_process(int code) {
+  std::fflush(nullptr);
+#if defined(__SANITIZE_ADDRESS__)
+  __lsan_do_leak_check();  // what exit() would have run: leak checking stays on in sanitized builds
+#endif
+  _exit(code);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   // One handler for every command and stage (stop.hpp); the commands poll it. The signals are held
   // over the re-exec, which resets handlers but keeps the mask and pending signals, so a Ctrl-C at
@@ -66,8 +88,9 @@ int main(int argc, char** argv) {
   wefm_cli::install_stop_handlers();
   // No exception may escape: an unexpected one (std::bad_alloc while writing outputs) becomes a
   // message and the solver-failure code rather than std::terminate.
+  int code = wefm_cli::kExitSolver;
   try {
-    return run(argc, argv);
+    code = run(argc, argv);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "wefm: out of memory\n");
   } catch (const std::system_error& e) {
@@ -79,5 +102,5 @@ int main(int argc, char** argv) {
   } catch (...) {
     std::fprintf(stderr, "wefm: internal error\n");
   }
-  return wefm_cli::kExitSolver;
+  end_process(code);
 }

@@ -3,10 +3,13 @@
 #include "wefm/core/linalg/ordering_choice.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <vector>
 #include <dlfcn.h>
 
 #include "wefm/core/sys/clock.hpp"
@@ -28,6 +31,35 @@ void set_blas_threads(int threads) {
 }
 
 namespace {
+
+#ifdef WEFM_HAVE_CHOLMOD
+// OpenBLAS takes a work buffer of 128 MB and a page for each thread that calls it, and where that
+// allocation fails it retries without end instead of returning (0.3.21, Debian 12): under an
+// address-space limit (`ulimit -v`) or strict overcommit the solve would hang inside BLAS. The same
+// allocations are tried here first, untouched and given back at once, and their failure is out of
+// memory. It keeps the buffers once it has them, so a thread count already probed is not again.
+constexpr std::size_t kBlasBuffer = (std::size_t{128} << 20) + 4096;
+std::atomic<int> g_blas_threads_probed{0};
+
+void require_blas_workspace(int threads) {
+  if (threads <= g_blas_threads_probed.load()) return;
+  std::vector<void*> held;
+  held.reserve(static_cast<std::size_t>(threads));
+  for (int k = 0; k < threads; ++k) {
+    void* p = std::malloc(kBlasBuffer);
+    if (!p) break;
+    held.push_back(p);
+  }
+  const bool ok = static_cast<int>(held.size()) == threads;
+  for (void* p : held) std::free(p);
+  if (!ok)
+    fail(Errc::out_of_memory, "out of memory: the BLAS library needs a 128 MB work buffer for each of " + std::to_string(threads) +
+                                  " threads of the factorisation, and the process cannot allocate them (an address-space limit?)");
+  int seen = g_blas_threads_probed.load();
+  while (seen < threads && !g_blas_threads_probed.compare_exchange_weak(seen, threads)) {
+  }
+}
+#endif
 
 // OpenMP regions opened by the calling thread run on it alone while this lives: the
 // max-active-levels ICV of the calling thread's data environment is set to 0 and restored
@@ -281,6 +313,7 @@ void SparseCholeskyT<Scalar>::factorize(const Matrix& K) {
   Eigen::ComputationInfo info;
 #ifdef WEFM_HAVE_CHOLMOD
   if (impl_->use_cholmod) {
+    require_blas_workspace(std::max(1, threads_));
     // The numeric factorisation without CHOLMOD's OpenMP regions (supernodal_refactor.hpp), on
     // CHOLMOD's analysis; CHOLMOD's own where that cannot be used (switched off, or a factor of
     // another kind).
