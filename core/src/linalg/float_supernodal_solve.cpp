@@ -113,7 +113,7 @@ WEFM_AVX2 inline float horizontal_sum(__m256 v) {
 // (the lanes of l * swapped w, real lanes minus imaginary lanes). The entries are taken from the
 // end down: the backward solve then reads the whole factor as one descending stream (columns and
 // supernodes are visited from the top down), which the prefetcher follows; read upward, every
-// column started a new stream (the solve took 26.3 against 21.3 ms on 2 threads, 41M entries).
+// column would start a new stream (docs/PERFORMANCE.md, "Measurements behind design choices").
 WEFM_AVX2 inline void dot_conj(const float* l, const float* w, int m, float& re, float& im) {
   __m256 a0 = _mm256_setzero_ps(), b0 = _mm256_setzero_ps(), a1 = _mm256_setzero_ps(), b1 = _mm256_setzero_ps();
   int k = m;

@@ -14,10 +14,10 @@ constexpr double kDoubtfulFlops = 300;
 
 // CHOLMOD's poor test is not made for large planar graphs: the flops per entry of any good order
 // grow there as sqrt(n) / log(n), and the dissection's passed 500 between 1M triangles (319 on the
-// disk) and 4M (561), which sent the 4M disk to METIS (15-18 s of analysis in a 30 s solve, for
-// a factorisation no faster). The planar bound is the flops' growth for an optimal order on a
-// planar graph (Lipton-Tarjan), with room: the dissection gives 24.3 n^1.5 on the 1M disk and 24.6
-// on the 4M one; AMD's poor orders of the disk 83 and 81.
+// disk) and 4M (561), which sent the 4M disk to METIS, whose analysis is then a large share of the
+// solve, for a factorisation no cheaper. The planar bound is the flops' growth for an optimal
+// order on a planar graph (Lipton-Tarjan), with room: the dissection gives 24.3 n^1.5 on the 1M
+// disk and 24.6 on the 4M one; AMD's poor orders of the disk 83 and 81.
 constexpr double kPlanarFlops = 50;
 
 }  // namespace

@@ -54,8 +54,8 @@ void PartitionedKKT::split(Index n, const int* outer, const int* inner, const Co
     if (u != x0 && u != x1) p_of_[static_cast<size_t>(u)] = k++;
   const Index np = n_ - 2;
   // K_PP is K without the rows and columns x0, x1: a filter over K's columns. The renumbering keeps
-  // the order, so each column stays sorted (no triplets and no sort: at 1M triangles those were
-  // 84 MB of triplets and two more copies of the matrix).
+  // the order, so each column stays sorted (no triplets and no sort: those would add a triplet
+  // list and two more copies of the matrix to the peak memory).
   std::vector<Eigen::Triplet<Complex>> px;
   K_XX_.setZero();
   Kpp_.resize(np, np);
@@ -142,7 +142,7 @@ void PartitionedKKT::build_cache(const std::vector<Index>& universe, const Eigen
     for (Eigen::SparseMatrix<Complex>::InnerIterator it(K_PX_, j); it; ++it) add_probe(static_cast<Index>(it.row()));
   // The unit columns at the probes, by forward solves on the elimination tree's paths where the
   // factor allows (SparseCholesky::inverse_entries), within the memory of one dense batch below.
-  // 1M-triangle cylinder, 1,000 seam uses: 55 s and a 2.9 GB peak as dense solves. The columns
+  // Dense solves would read the whole factor twice per probe (supernodal_inverse.hpp). The columns
   // of x0 and x1 (K_PX's, a few entries each, all at probes) are combinations of unit columns at
   // their neighbours: no dense solve for them either.
   const Index batch = 64;
@@ -411,13 +411,13 @@ namespace {
 // t with M t = rhs. Entries span many orders of magnitude (K_PP^{-1} is large along near-null
 // directions), so no relative rank threshold is meaningful: full pivoting, then consistency judged
 // by the residual relative to |M| |t|. Redundant but consistent constraints pass; contradictory
-// ones do not (with `check`). Full pivoting searches the whole remaining block at every step
-// (N^3 / 3 complex magnitudes): a seam of 500 facet edges (N = 504) took 0.25 s a solve, and a
-// 1M-triangle tube's mode choice solves six. A well-conditioned M does not need it: partial
+// ones do not (with `check`). Full pivoting searches the whole remaining block at every step (N^3/3
+// complex magnitudes), a cost that grows with the cube of the seam length, and the mode choice
+// solves several such systems per repeated edge. A well-conditioned M does not need it: partial
 // pivoting on M equilibrated by powers of two (exact) is kept when its estimated reciprocal
 // condition number is far above rounding and its residual passes; anything else goes to full
-// pivoting as before. Measured: 4e-10 to 5e-2 on the 1M tube and the real sample's seams, 9e-18
-// on a candidate whose M is singular.
+// pivoting. Measured: 4e-10 to 5e-2 on the 1M tube and the real sample's seams, 9e-18 on a
+// candidate whose M is singular.
 Eigen::VectorXcd solve_reduced(const Eigen::MatrixXcd& M, const Eigen::VectorXcd& rhs, bool check) {
   auto residual_ok = [&](const Eigen::VectorXcd& x, double& res, double& scale) {
     res = (M * x - rhs).norm();

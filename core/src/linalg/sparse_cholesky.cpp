@@ -164,8 +164,8 @@ static void analyze_ordered(LLT& llt, const Matrix& K, const std::vector<Vec3>& 
       llt.analyze_with(K, perm.data());
       done = llt.factor() && (amd_ok || dissection_acceptable({c.lnz, c.fl}, anz, n));
     } else {
-      // AMD's analysis is still the factor's (the 4M plate: 3.4 -> 2.3 s of analysis without the
-      // dissection's symbolic analysis and a second one of AMD's); its counts go back.
+      // AMD's analysis is still the factor's (neither the dissection's symbolic analysis nor a
+      // second one of AMD's is needed); its counts go back.
       c.lnz = amd.lnz;
       c.fl = amd.fl;
       done = true;
@@ -225,12 +225,12 @@ struct SparseCholeskyT<Scalar>::Impl {
     if (use_cholmod) use_huge_pages_in_suitesparse();
     // Ordering: AMD; where its fill is poor (CHOLMOD's test) a geometric nested dissection when
     // the caller gave points (set_ordering_points); METIS (CHOLMOD's default fallback) when that is
-    // poor too and beyond a planar graph's growth (ordering_choice.hpp). On the 1M disk the
-    // boundary term's couplings along the loop make AMD's fill poor (44M factor entries, 29 GFlop;
-    // 26M without the boundary term); METIS took 2.7 s of analysis
-    // for 25.2M entries (7.4 GFlop), the nested dissection takes 0.2 s for 27M. On the 1M plate
-    // AMD's fill passes (16.5M, 3.7 GFlop, 0.3 s) and is kept. Cheap renumberings before AMD, METIS
-    // on a coarsened graph and METIS's own options were measured and dropped (docs/PERFORMANCE.md).
+    // poor too and beyond a planar graph's growth (ordering_choice.hpp). On a large disk the
+    // boundary term's couplings along the loop make AMD's fill poor; METIS's analysis then costs
+    // many times the nested dissection's for a factor of about the same size. On a plate AMD's fill
+    // passes and is kept (docs/PERFORMANCE.md, "Measurements behind design choices"). Cheap
+    // renumberings before AMD, METIS on a coarsened graph and METIS's own options were measured and
+    // dropped (docs/PERFORMANCE.md).
 #endif
   }
 };
@@ -382,8 +382,8 @@ bool SparseCholeskyT<Scalar>::keep_single_precision() {
     // The converted factor stays in CHOLMOD's value array, which CHOLMOD still takes for a numeric
     // factor: solve() never hands it to CHOLMOD while the float factor is in use, and the next
     // factorize overwrites every entry (it clears each supernode before assembling it).
-    // Its second half is given back to the system: 1M-triangle disk, s = 1, peak 1271 MB against
-    // 1349 MB without (1340 MB with the double factor).
+    // Its second half is given back to the system, which lowers the solve's peak memory
+    // (docs/PERFORMANCE.md, "Measurements behind design choices").
     impl_->single.release_unused();
     counters_.time_factorization += now() - t0;
     return true;

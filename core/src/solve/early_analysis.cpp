@@ -6,8 +6,8 @@ namespace wefm {
 
 namespace {
 
-// Below this many uses the analysis takes some 30 ms at most (0.7 s at 500k uses on a 2-core VM):
-// not worth a thread.
+// Below this many uses the analysis is too short to be worth a thread of its own
+// (docs/PERFORMANCE.md, "Measurements behind design choices").
 constexpr Index kMinUses = 20000;
 
 }  // namespace

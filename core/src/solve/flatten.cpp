@@ -366,8 +366,8 @@ FlattenResult Attempt::rolled_out() {
 }
 
 // The boundary operator B and K straight into its pattern, without the surface operator A
-// (K = A^H A + B^H B: at 1M triangles A cost 180 MB and two passes); K analysed (unless the early
-// analysis did) and factorised.
+// (K = A^H A + B^H B: A would cost nine entries per triangle and two passes); K analysed (unless
+// the early analysis did) and factorised.
 void Attempt::assemble_and_analyse() {
   stage_.check(0.05, "assembly");
   const double t0 = now();
@@ -461,7 +461,7 @@ bool Attempt::choose_mode(Index e) {
   t.md = mode_;
   t.md[static_cast<size_t>(e)] = EdgeMode::Free;
   // The free layout, solved once: the free candidate, and the rotation estimate of the rotational
-  // one (each solve costs a few factor solves: 0.7 s at 1M triangles).
+  // one (each solve costs a few solves with the factor).
   t.z_free = z_;
   try {
     t.z_free = kkt_.solve(rows_with(t.md, rotation_, vector_gauge()), nullptr);
@@ -473,7 +473,7 @@ bool Attempt::choose_mode(Index e) {
   // only where it could matter: the winner and the valid candidates within kRefineMargin of its
   // score, or every candidate when none is valid. Refinement moves a score by 5e-10 at most
   // (1M-triangle tube), far inside the margin, so the choice is the one refined candidates give;
-  // each refinement costs two factor solves (0.3 s at 1M).
+  // each refinement costs two solves with the factor.
   const auto& kOrder = EdgeTrial::kOrder;
   for (size_t k = 0; k < kOrder.size(); ++k) try_mode(t, k, false);
   const int first = t.best();
@@ -651,9 +651,9 @@ void Attempt::prepare_gauss_newton(GaussNewton& gn, const SeamSubstitution& sub)
   gn.own_factor().set_memory_limit(opt_.memory_limit_mb, other_mb_);
   if (!gn.share_factor(kkt_.factor(), kkt_.split_use(0), kkt_.split_use(1))) {
     kkt_.release();
-    // Its own factor orders its own pattern: points for the ordering, as for K_PP (a 1M-triangle
-    // cylinder's rotational seam: 2.4 s of METIS otherwise). A seam's shift sits at the mean of
-    // the uses it moves.
+    // Its own factor orders its own pattern: points for the ordering, as for K_PP (without them a
+    // rotational seam's pattern can fall to METIS, whose analysis costs far more). A seam's shift
+    // sits at the mean of the uses it moves.
     std::vector<Vec3> points(static_cast<size_t>(sub.reduced), Vec3::Zero());
     for (Index c = 0; c < sub.reduced; ++c) {
       int k = 0;
@@ -695,9 +695,9 @@ FlattenResult Attempt::finish() {
 FlattenResult flatten_attempt(const FlattenInput& in) {
   const double t_start = now();
   validate_options(in.options);
-  // The factorisation's BLAS and OpenMP run on one thread whatever opt.threads: 2 threads were no
-  // faster (1M disk, s = 0: 3.4-3.6 s against 2.7-3.3 s), their wake-ups spin on a busy machine,
-  // and their sums' order would make the layout depend on the thread count.
+  // The factorisation's BLAS and OpenMP run on one thread whatever opt.threads: more threads do
+  // not shorten it (docs/PERFORMANCE.md, "Measurements behind design choices"), their wake-ups
+  // spin on a busy machine, and their sums' order would make the layout depend on the thread count.
   set_blas_threads(1);
   Stage(in).check(0.0, "coefficients");
   return Attempt(in, t_start).run();

@@ -28,7 +28,9 @@ void add_entry(Entry* es, int& ne, Index use, Complex l, Complex m) {
   es[ne++] = {use, l, m};
 }
 
-// (L / |d|)^s without pow for the usual exponents (pow was 6% of a 1M-triangle s = 1 solve).
+// (L / |d|)^s without pow for the usual exponents: it is evaluated per half-edge in every pass, and
+// pow is a measurable share of the continuation
+// (docs/PERFORMANCE.md, "Measurements behind design choices").
 inline double ratio_pow(double ratio, double s) {
   if (s == 1.0) return ratio;
   if (s == 2.0) return ratio * ratio;
@@ -131,8 +133,8 @@ GaussNewton::GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC
   }
   assign_huge(len_, c.alpha.size(), 0.0);
   if (form == Residual::PerHalfEdge) {
-    // Where each triangle's 3x3 block lands, as offsets in its columns (a byte each: 9 MB at 1M
-    // triangles; the binary searches took 15% of the linearisation at 1M triangles).
+    // Where each triangle's 3x3 block lands, as offsets in its columns (a byte each, nine per
+    // triangle): found once here instead of by binary searches in every linearisation.
     const size_t nt = tp.corner_use.size() / 3;
     assign_huge(block_offset_, 9 * nt);
     parallel_for(threads_, static_cast<Index>(nt), [&](Index t0, Index t1) {
@@ -519,9 +521,9 @@ void GaussNewton::refactor(const SpMatC& Kc, const Eigen::VectorXd& shift) {
 // Projected conjugate gradients on (H + diag(shift)) delta = -g with C delta = 0, preconditioned
 // by a complex factorisation of the complex-linear part of an earlier Gauss-Newton matrix (the
 // constraint preconditioner keeps every iterate in the null space of C). The real 2n matrix
-// itself was factorised before: measured at 1M triangles, s = 1, its factor took the peak from
-// 1.35 GB (s = 0) to 3.1 GB; the complex one is the s = 0 factor's storage, refactorised in
-// place, and costs 4-8 CG iterations per step where the real one cost 1-3.
+// itself is not factorised: its factor would more than double the solve's peak memory, while the
+// complex one reuses the s = 0 factor's storage, refactorised in place, at the price of a few more
+// CG iterations per step (docs/PERFORMANCE.md, "Measurements behind design choices").
 class GaussNewton::ProjectedCg {
  public:
   ProjectedCg(GaussNewton& gn, const SpMatC& Kc, const Complex* S, const Eigen::VectorXd& shift, const Eigen::MatrixXd& C,
@@ -622,9 +624,9 @@ void GaussNewton::ProjectedCg::apply(const Eigen::VectorXd& p, Eigen::VectorXd& 
   });
 }
 
-// CG's vector passes (at 1M triangles each reads 8-16 MB: together as much time as a float solve)
-// split over threads: element-wise updates, and dot products summed over kBlocks fixed blocks in
-// block order, so the same bits for any thread count.
+// CG's vector passes (each reads one or two vectors of the problem's size; together they cost about
+// as much as a float solve) split over threads: element-wise updates, and dot products summed over
+// kBlocks fixed blocks in block order, so the same bits for any thread count.
 double GaussNewton::ProjectedCg::dot(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
   const Index nr = nr_;
   double part[kBlocks] = {};
@@ -785,7 +787,7 @@ bool GaussNewton::share_factor(SparseCholesky& chol, Index x0, Index x1) {
     if (u != x0 && u != x1) p_of_[static_cast<size_t>(u)] = k++;
   // K_PP's pattern as PartitionedKKT::set_matrix built it: K's columns and rows without x0, x1,
   // renumbered (the numbering keeps the order, so every column stays sorted). Written in place:
-  // triplets and their sort cost 150 MB at 1M triangles, at the peak of the solve.
+  // triplets and their sort would add more than a copy of the pattern at the peak of the solve.
   const int* outer = Kc_.outerIndexPtr();
   const int* inner = Kc_.innerIndexPtr();
   Index nnz = 0;
@@ -817,7 +819,7 @@ bool GaussNewton::share_factor(SparseCholesky& chol, Index x0, Index x1) {
 
 void GaussNewton::precondition(const Eigen::MatrixXd& r, Eigen::MatrixXd& out) {
   // The gathers and scatters around the factor's solve are element by element: split over threads
-  // they give the same bits (at 1M triangles each is a pass over 8-16 MB, a fifth of a float solve).
+  // they give the same bits (each is a pass over one or two vectors, a fair share of a float solve).
   const Index n = r.rows() / 2;
   auto at = [&](Index k, Index j) { return Complex(r(2 * k, j), r(2 * k + 1, j)); };
   out.resize(r.rows(), r.cols());

@@ -1,7 +1,7 @@
 #pragma once
 // A whole file in memory with a '\n' sentinel after the last byte, so line and token scanners can
 // stop on the sentinel instead of testing the end on every character. One read() of the file's
-// size: a 1M-triangle OBJ (50 MB) comes in at memory speed with no re-allocation.
+// size: the file comes in with one copy and no re-allocation, whatever its size.
 #include <cstddef>
 #include <memory>
 #include <string>

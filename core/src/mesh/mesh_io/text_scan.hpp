@@ -1,7 +1,8 @@
 #pragma once
 // Number scanning for the text mesh formats over a FileBuffer (which ends in a '\n' sentinel, so
 // every loop here stops at a line end without an end-of-buffer test). Doubles go through
-// std::from_chars (exact, locale-free, and several times faster than strtod or streams).
+// std::from_chars (exact, locale-free, and without the locale and stream state that strtod and
+// streams consult per number).
 #include <charconv>
 #include <cstdint>
 #include <cstring>

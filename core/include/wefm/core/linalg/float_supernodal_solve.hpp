@@ -5,8 +5,8 @@
 // Why: from s > 0 on, the continuation spends most of its time applying its preconditioner, a
 // Cholesky factor of the s = 0 matrix refactorised with the Gauss-Newton values. Each application
 // is two triangular solves, and a single-vector triangular solve reads the whole factor once per
-// direction for a multiply-add per entry: it is bound by memory bandwidth (1M-triangle disk: 34M
-// complex entries, 546 MB in double, 0.145 s per application with CHOLMOD's solve). A
+// direction for a multiply-add per entry: it is bound by memory bandwidth, since a large face's
+// factor (tens of millions of complex entries) fits in no cache. A
 // preconditioner needs only a few digits (CG stops at 1e-2 in its norm, and the CG itself stays in
 // double), so a float factor halves the bytes read per application and the factor's memory.
 //
@@ -65,8 +65,8 @@ struct SupernodalSplit;  // supernodal_split.hpp
 class FloatSupernodalFactor {
  public:
   // Converts the values to single precision in place: the float factor occupies the first half of
-  // x's bytes (no second buffer: a separate float copy took the 1M-triangle disk's peak at s = 1
-  // from 1340 to 1516 MB, at the conversion), and the second half is free to be released
+  // x's bytes (no second buffer: a separate float copy would raise the solve's peak memory at the
+  // conversion), and the second half is free to be released
   // (release_unused). The double values are gone afterwards: only a refactorisation
   // brings them back. Returns false and leaves x untouched when the kernels are not available or a
   // value would not survive the conversion (a diagonal entry outside [2^-60, 2^60], any entry

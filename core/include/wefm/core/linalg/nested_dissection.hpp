@@ -6,9 +6,9 @@
 // points (kept in their order). The separators are taken on the graph given, so couplings beyond
 // the triangles (the boundary term's, two steps along a loop) are separated too.
 //
-// Why: on the 1M disk the boundary term's couplings make minimum degree's fill poor (44M factor
-// entries against 26M without them) and CHOLMOD then runs METIS, 2.7 s of a 5.3 s solve; this
-// order takes 0.2 s for 27M entries (docs/PERFORMANCE.md).
+// Why: on a large disk the boundary term's couplings make minimum degree's fill poor and CHOLMOD
+// then runs METIS, whose analysis is a large share of the solve; this order costs a small fraction
+// of that for about the same fill (docs/PERFORMANCE.md, "Measurements behind design choices").
 #include <vector>
 
 #include "wefm/core/sys/types.hpp"

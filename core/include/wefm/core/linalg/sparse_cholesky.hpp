@@ -72,8 +72,9 @@ class SparseCholeskyT {
   // Options::threads: the threads of the single-precision solves (float_supernodal_solve.hpp).
   // CHOLMOD's own OpenMP loops always run on the calling thread alone: its supernodal
   // factorisation opens a region of 4 threads (a compile-time constant of the library) per large
-  // supernode, and on 2 cores their wake-ups cost 1.4 s of CPU time in a 1M-triangle s = 1 solve
-  // (2 factorisations; 14.9 -> 13.5 s), and their sums' order would depend on the thread count.
+  // supernode, and on a machine with fewer cores than that their wake-ups spin for CPU time the
+  // solve needs (docs/PERFORMANCE.md, "Measurements behind design choices"), and their sums' order
+  // would depend on the thread count.
   void set_threads(int threads) { threads_ = threads; }
   // Options::memory_limit_mb: after each symbolic analysis, a factor whose values together with
   // `other_mb` (the rest of the solve, estimated by the caller) would exceed limit_mb is refused

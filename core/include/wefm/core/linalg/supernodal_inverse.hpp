@@ -3,8 +3,8 @@
 // elimination tree.
 //
 // Why: PartitionedKKT needs K_PP^{-1} e_u at the uses of every repeated edge, and only at those
-// uses. A dense solve per use reads the whole factor twice: at 1M triangles the 1,000 uses of a
-// cylinder's seam took 55 s and 2.9 GB (batches of 64 dense right-hand sides). With
+// uses. A dense solve per use reads the whole factor twice, so its cost grows with the seam length
+// times the factor's size, and batches of dense right-hand sides take memory of that order. With
 // A = P^T L L^H P, A^{-1}(a, b) = y_a^H y_b where y_a = L^{-1} P e_a is non-zero only on the path
 // from a's supernode to the root of the supernodal elimination tree, so forward solves over the
 // union of those paths suffice, and no backward solve is needed.

@@ -3,14 +3,14 @@
 // analysis (its ordering, supernodes and value layout), for every factorisation of that analysis.
 //
 // Why: CHOLMOD's supernodal numeric factorisation opens three or four OpenMP regions per supernode,
-// and libgomp ends every region, even one run by a single thread, with a futex system call: 577k of
-// them for one factorisation of the 1M-triangle plate, about 1.5 us each on a virtual machine
-// (0.9 s of a 2.2 s factorisation). This left-looking supernodal factorisation (CHOLMOD's
-// algorithm and BLAS/LAPACK kernels: ZHERK and ZGEMM for the updates, ZPOTRF and ZTRSM per
-// supernode) runs without OpenMP and works on two groups of disjoint subtrees at once
-// (supernodal_split.hpp). Every update is applied in an order fixed by the factor's structure,
-// so the result does not depend on the number of threads. CHOLMOD still analyses, solves, and
-// factorises when this is switched off (set_supernodal_refactor).
+// and libgomp ends every region, even one run by a single thread, with a futex system call: a large
+// factor makes hundreds of thousands of them, a large share of the factorisation on a virtual
+// machine (docs/PERFORMANCE.md, "Measurements behind design choices"). This left-looking supernodal
+// factorisation (CHOLMOD's algorithm and BLAS/LAPACK kernels: ZHERK and ZGEMM for the updates,
+// ZPOTRF and ZTRSM per supernode) runs without OpenMP and works on two groups of disjoint subtrees
+// at once (supernodal_split.hpp). Every update is applied in an order fixed by the factor's
+// structure, so the result does not depend on the number of threads. CHOLMOD still analyses,
+// solves, and factorises when this is switched off (set_supernodal_refactor).
 #include <cstdint>
 #include <vector>
 

@@ -24,8 +24,8 @@ struct HalfEdges {
 HalfEdges build_halfedges(const std::vector<Tri>& triangles, Index vertex_count);
 
 // Half-edge from a to b, or -1. Linear in the valence of a via a vertex->outgoing index, built on
-// the first find: a face whose topology names no facet edge never pays for it (16 MB at 1M
-// triangles). The triangles must outlive the lookup.
+// the first find: a face whose topology names no facet edge never pays for it (an index the size
+// of the vertex count plus the half-edges). The triangles must outlive the lookup.
 class HalfEdgeLookup {
  public:
   HalfEdgeLookup(const std::vector<Tri>& triangles, Index vertex_count) : tris_(&triangles), vertex_count_(vertex_count) {}

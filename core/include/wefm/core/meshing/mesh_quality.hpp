@@ -1,5 +1,5 @@
 #pragma once
-// Quality of a 3D mesh (METHOD §9, eq. 11 and 12).
+// Quality of a 3D mesh (METHOD §9.4, eq. 11 and 12).
 #include <vector>
 
 #include "wefm/core/meshing/domain_mesh.hpp"

@@ -34,7 +34,7 @@ SpMatC boundary_gram(const SpMatC* B);
 SpMatC assemble_energy(const SpMatC& A, const SpMatC* B, int threads = 1);
 
 // The same K without building A: for the per-half-edge residual straight into its pattern
-// (energy_assembler.hpp), about 4x faster and without A's nine entries per triangle in memory;
+// (energy_assembler.hpp), in one pass and without A's nine entries per triangle in memory;
 // equal to assemble_energy(assemble_surface_operator(...), B) up to rounding.
 SpMatC assemble_energy(const Topology& topo, const Coefficients& c, const std::vector<Complex>& sigma, double k, Residual form,
                        const SpMatC* B, int threads = 1);

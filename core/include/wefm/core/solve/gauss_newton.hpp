@@ -46,7 +46,8 @@ class GaussNewton {
   // matrix). rows: constraints over the reduced unknowns that every step must keep (caller rows,
   // cycle closures); they hold at the starting layout.
   // K_pattern is taken over (swapped out: Eigen 3.4's sparse matrices have no move constructor, and
-  // a copy of K is 70 MB at 1M triangles); the caller's matrix is left empty.
+  // a copy of K would be a second matrix of the problem's size at the peak); the caller's matrix is
+  // left empty.
   // threads: as set_threads, for the constructor's own passes too (weights, block offsets).
   GaussNewton(const Topology& tp, const Coefficients& c, const SpMatC* B, double k, Residual form, SpMatC& K_pattern,
               const SeamSubstitution& sub, std::vector<LinearRow> rows, Backend backend, double min_beta, int threads = 1);
@@ -209,7 +210,7 @@ class GaussNewton {
   // The Gauss-Newton matrix in complex form, on the pattern of K: Kc_ (Hermitian) is its
   // complex-linear part and the preconditioner, S_ (complex symmetric, values on Kc_'s pattern)
   // its anti-linear part. A real 2n x 2n copy (four doubles per entry of K, and their indices)
-  // cost 170 MB at 1M triangles and more memory traffic per product.
+  // would take about twice the memory of Kc_ and more memory traffic per product.
   SpMatC Kc_;
   std::vector<Complex> S_;
   std::vector<int> btb_slot_;  // B^H B (constant: the boundary term is complex-linear) in Kc_'s pattern
@@ -256,11 +257,11 @@ class GaussNewton {
   int fresh_pcg_ = 0;  // the same, for the first step solved with the current factor
   bool baseline_pending_ = false;  // refactorised mid-step: the next step sets fresh_pcg_
   // Refactorise when the last step took this many CG iterations more than the first one with the
-  // current factor: a refactorisation costs 12-22 single-vector preconditioner solves (measured
-  // from 4k to 500k uses; 11.7 at 1M triangles), so it pays only when the factor has gone stale.
-  // Measured at 1M triangles (plate, s = 1): a step takes 10-13 iterations with a fresh factor
-  // and 10-13 with one two steps old; the former rule (refactorise after any step over 10
-  // iterations) refactorised three times for nothing.
+  // current factor: a refactorisation costs a dozen or more single-vector preconditioner solves,
+  // so it pays only when the factor has gone stale. A factor a few steps old often needs no more
+  // iterations than a fresh one, so a rule on the iteration count alone (any step over a fixed
+  // count) would refactorise where nothing is gained
+  // (docs/PERFORMANCE.md, "Measurements behind design choices").
   static constexpr int kRefactorExtra = 10;
   // Inexact Newton: CG stops at 1e-2 in the preconditioned residual norm (1e-4 in r.z). At 1M
   // triangles (s = 1) 1e-4 in the norm took 40 CG iterations where 1e-2 takes 22, for the same

@@ -1,10 +1,10 @@
 #pragma once
-// Transparent huge pages for the solve's large arrays. A 1M-triangle solve touches about 1.2 GB
-// for the first time; in 4 KB pages that is 430k page faults, and on a virtual machine each costs
-// ~11 us (measured on a 2-core AMD EPYC guest: 4.7-5.3 s of system time in a 14 s `wefm flatten`
-// at s = 0). Advised blocks fault in 2 MB at a time. Linux honours the advice when
-// /sys/kernel/mm/transparent_hugepage/enabled is `always` or `madvise` (Debian's default); elsewhere
-// it is a no-op. WEFM_HUGE_PAGES=0 in the environment turns it off.
+// Transparent huge pages for the solve's large arrays. A large solve touches most of its memory for
+// the first time, one page fault per 4 KB page, and on a virtual machine faults are costly enough
+// to be a large share of the solve (docs/PERFORMANCE.md, "Measurements behind design choices").
+// Advised blocks fault in 2 MB at a time, 512 times fewer faults. Linux honours the advice when
+// /sys/kernel/mm/transparent_hugepage/enabled is `always` or `madvise` (Debian's default);
+// elsewhere it is a no-op. WEFM_HUGE_PAGES=0 in the environment turns it off.
 #include <cstddef>
 #include <vector>
 
