@@ -1,9 +1,9 @@
 #pragma once
 // The CAD import as a plugin: Open CASCADE is loaded only by the commands that read a CAD model.
-// Linking it into the `wefm` tool cost every run of every command ~40 ms of dynamic linking (19 OCCT
-// libraries; a 216-triangle `wefm flatten` took 0.075 s, of which the process start was 0.05 s) and
-// made the tool need OCCT's libraries even to flatten an OBJ. The module `wefm-cad-occt.so` holds
-// load_cad_model and everything under it; the CLI opens it with dlopen when a model command runs.
+// Linked into the `wefm` tool, OCCT's many libraries would be loaded and relocated by every run of
+// every command, much of a small face's run, and the tool would need them even to flatten an OBJ.
+// The module `wefm-cad-occt.so` holds load_cad_model and everything under it; the CLI opens it
+// with dlopen when a model command runs.
 // Both sides are built from this tree by the same compiler, so C++ types cross: the table checks
 // its ABI number and the sizes of the structures it fills, so that a stale module is refused.
 #include <cstddef>

@@ -43,8 +43,8 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // Triangles a whole-model mesh may need before it is refused unless the caller says otherwise, and
-// about what one costs in the tool's peak memory (face meshes, the welded mesh, the output): 335 MB
-// for the 1.0M triangles of gmsh_rod.brep at 1/1000 of its diagonal, rounded up.
+// about what one costs in the tool's peak memory (face meshes, the welded mesh, the output), from a
+// measured whole-model mesh, rounded up (docs/PERFORMANCE.md, "Measurements behind design choices").
 constexpr long long kDefaultMaxElements = 50'000'000;
 constexpr double kBytesPerTriangle = 400;
 

@@ -14,11 +14,11 @@
 #include <unistd.h>
 #endif
 
-// Why: on a virtual machine every first touch of a 4 KB page is a fault of about 11 us, and a
-// 1M-triangle solve touches about 1.2 GB. The library advises its own large arrays (wefm.h,
+// Why: on a virtual machine every first touch of a 4 KB page is a costly fault, and a large solve
+// touches most of its memory for the first time. The library advises its own large arrays (wefm.h,
 // "Memory"), but what it cannot reach (Eigen's sparse value arrays, which their constructors touch
-// before any advice, and the many blocks under 4 MB) still took 100k faults on the 1M plate at
-// s = 0; with glibc's tunable 11k, and the whole run 4.6 -> 3.7 s (wefm-bench and docs/PERFORMANCE.md).
+// before any advice, and the many blocks under 4 MB) still faults page by page; glibc's tunable
+// puts those in huge pages too (docs/PERFORMANCE.md, "Huge-page malloc for the whole tool").
 // The tunable is read once at start-up, so it can only be set by starting again. A host program
 // embedding the library can set it in its own environment the same way.
 //
@@ -28,8 +28,7 @@
 // no advice, `never` ignores it); glibc older than 2.35 (no such tunable); less than 2 GB of free
 // memory (a machine whose memory is full of page cache can stall in compaction to find huge pages);
 // `flatten` or `mesh` of a small face (every file it reads under kSmallInput): starting again
-// costs a second process start (0.01 s since the tool no longer links Open CASCADE; 0.055 s
-// before), more than such a face saves in page faults.
+// costs a second process start, more than such a face saves in page faults.
 
 namespace wefm_cli {
 
@@ -42,9 +41,8 @@ bool solving_command(const char* c) {
   return false;
 }
 
-// About 5k triangles as OBJ (10k as binary STL). Plate faces at s = 1, whole `wefm flatten`,
-// without and with huge-page malloc: 2k triangles 0.04 s both, 5k 0.06 -> 0.055, 10k 0.11 ->
-// 0.08, 20k 0.20 -> 0.15, 100k 0.72 -> 0.58; the second start costs 0.01 s.
+// About 5k triangles as OBJ (10k as binary STL): below that, the second process start costs about
+// what huge-page malloc saves (docs/PERFORMANCE.md, "Measurements behind design choices").
 constexpr std::uintmax_t kSmallInput = 256u << 10;
 
 bool small_face_command(int argc, char** argv) {
