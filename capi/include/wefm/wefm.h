@@ -52,11 +52,10 @@
  *              pool to 1 thread, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether),
  *              and where CHOLMOD still factorises, its OpenMP loops run on the solving thread
  *              alone (its OpenMP max-active-levels is 0 during the factorisation, restored after;
- *              other threads are not affected). On 2 cores, 2 threads take the whole `wefm flatten`
- *              of a 1M-triangle plate at s = 1 from 12.2 to 9.0 s.
+ *              other threads are not affected). Measured times by thread count: docs/PERFORMANCE.md.
  * Memory.      A solve advises its large arrays (4 MB and up) for transparent huge pages
- *              (madvise MADV_HUGEPAGE, while the system's free memory is ample): a 1M-triangle
- *              solve otherwise takes ~450k page faults, 3-5 s of system time on a virtual machine.
+ *              (madvise MADV_HUGEPAGE, while the system's free memory is ample): otherwise the first
+ *              touch of every 4 KB page is a page fault, which is costly on a virtual machine.
  *              In CHOLMOD builds the first solve also points SuiteSparse's global malloc and calloc
  *              (SuiteSparse_config) at wrappers that add that advice, process-wide, once, and only
  *              if the host program has not installed its own allocator there; the blocks stay
@@ -64,7 +63,7 @@
  *              once) turns both off. What the library cannot advise (smaller blocks, Eigen's
  *              arrays) a host on glibc >= 2.35 reaches by starting with
  *              GLIBC_TUNABLES=glibc.malloc.hugetlb=1 in its environment, as the wefm tool does
- *              (a 1M-triangle solve: about 100k faults -> 11k; apps/README.md, "Environment").
+ *              (apps/README.md, "Environment").
  * Re-entrancy. A progress callback may call back into the face that is solving, but only to read it
  *              or stop it: wefm_face_cancel, wefm_face_retain, wefm_face_release, wefm_face_last_error,
  *              wefm_face_has_result, wefm_face_get_options, the topology queries (*_count, get_edge,
@@ -101,8 +100,8 @@
  *              frozen into each caller instead of coming from the library. We chose
  *              init-functions-plus-struct_size over per-option setters because FFI users map a
  *              plain struct directly and get all defaults at once.
- *              Only functions in the stable section keep their ABI across minor versions; the
- *              experimental section (WEFM_EXPERIMENTAL) may change in any release. The exported
+ *              Every function declared here keeps its ABI across minor versions; there is no
+ *              experimental section yet. The exported
  *              symbols and the ABI are pinned by capi/abi/ and checked by ctest.
  * @endverbatim
  */
