@@ -1,5 +1,5 @@
 #pragma once
-// 3D -> UV (METHOD §9): closest point on the 3D triangulation through a uniform grid of triangle
+// 3D -> UV (METHOD §9.3): closest point on the 3D triangulation through a uniform grid of triangle
 // bounding boxes, searched in growing shells until no closer triangle can exist.
 #include <vector>
 

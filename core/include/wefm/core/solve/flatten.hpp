@@ -1,6 +1,7 @@
 #pragma once
 // The WEFM solution process (METHOD §7): conformal solve with a two-step gauge, repeated-edge
-// decisions, continuation in s with a rho fixed point per step, quality.
+// decisions, continuation in s (each step minimised by damped Gauss-Newton: gauss_newton.hpp,
+// docs/SOLVER.md), quality.
 #include <array>
 #include <atomic>
 #include <cmath>
