@@ -27,6 +27,11 @@ constexpr int kChildOutOfMemory = 3;
   std::signal(SIGTERM, SIG_DFL);
   prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (getppid() != parent) _exit(1);  // the parent died before the line above
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer reserves terabytes of address space for its shadow: no address-space cap can
+  // apply in a sanitized build (the child would fail its first mmap).
+  memory_mb = 0;
+#endif
   if (memory_mb > 0) {
     const rlim_t bytes = static_cast<rlim_t>(memory_mb * 1048576.0);
     rlimit cur{};

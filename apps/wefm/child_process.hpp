@@ -17,7 +17,8 @@ struct ChildOutcome {
 
 // `seconds` > 0 bounds the child's run (besides the stop requests). `memory_mb` > 0 caps the child's
 // address space (RLIMIT_AS, in the child only): a runaway allocation fails there, reported as
-// kFailed "ran out of memory", instead of pushing the machine into swap or the OOM killer.
+// kFailed "ran out of memory", instead of pushing the machine into swap or the OOM killer. (No cap
+// in AddressSanitizer builds: the sanitizer's shadow reservation alone exceeds any.)
 ChildOutcome run_in_child(const std::function<std::string()>& work, double seconds, double memory_mb = 0);
 
 // The machine's physical memory in MB (0 when unknown): the import child's default cap.
