@@ -15,6 +15,20 @@ import numpy as np
 import wefm
 
 
+def read_seams(path):
+    """The vertex pairs of a seam file; a file holding only comments has none."""
+    pairs = []
+    with open(path) as f:
+        for number, line in enumerate(f, 1):
+            fields = line.split("#", 1)[0].split()
+            if not fields:
+                continue
+            if len(fields) != 2:
+                raise SystemExit("%s:%d: expected two vertex indices, got %r" % (path, number, line.strip()))
+            pairs.append((int(fields[0]), int(fields[1])))
+    return np.array(pairs, dtype=np.int64).reshape(-1, 2)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("input")
@@ -29,7 +43,7 @@ def main(argv=None):
     try:
         with wefm.Face(vertices, triangles) as face:
             if args.seams:
-                face.add_seams(np.loadtxt(args.seams, dtype=np.int64, comments="#", ndmin=2))
+                face.add_seams(read_seams(args.seams))
             report = face.solve(s=args.s, strict=False)
             face.write_obj(args.output)
     except wefm.WefmError as err:

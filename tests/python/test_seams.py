@@ -47,3 +47,28 @@ def test_edge_scores_have_one_slot_per_mode():
                                       wefm.EDGE_ROTATIONAL)
         # The mode chosen by AUTO was tried, so its score is known.
         assert not np.isnan(scores[f.edge_modes[edge]])
+
+
+def test_no_seams_is_the_same_face_as_no_call():
+    # An empty list, or np.loadtxt of a seam file holding only comments (shape (0, 1)), adds no
+    # seam: the face solves exactly as if add_seams had not been called.
+    xyz, tri = cylinder(RINGS, SECTORS, cut=True)
+    with wefm.Face(xyz, tri) as plain:
+        plain.solve()
+        expected = plain.uv.copy()
+    for empty in ([], np.zeros((0, 1), dtype=np.int64), np.zeros((0, 2), dtype=np.int32)):
+        with wefm.Face(xyz, tri) as f:
+            f.add_seams(empty)
+            f.solve()
+            assert np.array_equal(f.uv, expected)
+
+
+def test_seams_of_the_wrong_width_are_refused():
+    xyz, tri = cylinder(RINGS, SECTORS, cut=True)
+    with wefm.Face(xyz, tri) as f:
+        try:
+            f.add_seams([[0, 1, 2]])
+        except ValueError as err:
+            assert "shape (n, 2)" in str(err)
+        else:
+            raise AssertionError("a row of three indices was accepted")

@@ -19,6 +19,9 @@ def rows(values, width, dtype, name):
     """`values` as a C-contiguous (n, width) array of `dtype`, copied at most once. Integer data is
     converted only if every value fits `dtype` (_checked.integer_array)."""
     arr = np.asarray(values)
+    if arr.size == 0:
+        # An empty list, or np.loadtxt of a file holding only comments (shape (0, 1)): no rows.
+        arr = arr.reshape(0, width)
     if arr.ndim == 1 and width == 1:
         arr = arr.reshape(-1, 1)
     if arr.ndim != 2 or arr.shape[1] != width:
