@@ -66,6 +66,19 @@ TEST_CASE("the roll-out reproduces the global s = 1 layout on a developable face
   CHECK(worst < 1e-6);
 }
 
+TEST_CASE("the roll-out reports the s it ran at") {
+  // The roll-out weighs each prediction by rho^s at the requested s (no continuation), so the
+  // report's s is that value, not the global method's default.
+  const TriMesh m = test::cut_open_cylinder(24, 6);
+  for (double s : {0.0, 0.3, 2.0}) {
+    CAPTURE(s);
+    Options r = test::with_s(s);
+    r.method = Method::Rollout;
+    const auto rr = test::solve(m, r);
+    CHECK(rr.report.s == s);
+  }
+}
+
 TEST_CASE("an open cylinder with no cut (an annulus) is determinate with the boundary term: loops simple and nested") {
   const TriMesh m = test::open_cylinder(24, 6);
   // At s = 0, where the boundary term is what makes the system determinate. Both loops are

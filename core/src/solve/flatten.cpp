@@ -356,7 +356,7 @@ FlattenResult Attempt::rolled_out() {
   require_finite(res_.uv);
   rep_.iterative_iterations = rr.sweeps;
   rep_.converged = rr.converged;
-  rep_.s = 1.0;
+  rep_.s = opt_.s;  // the roll-out runs at the target s directly (no continuation)
   const double t0 = now();
   rep_.quality = evaluate_quality(mesh_, tp_, res_.uv, threads_);
   rep_.time.quality = now() - t0;
@@ -695,10 +695,11 @@ FlattenResult Attempt::finish() {
 FlattenResult flatten_attempt(const FlattenInput& in) {
   const double t_start = now();
   validate_options(in.options);
-  // The factorisation's BLAS and OpenMP run on one thread whatever opt.threads: more threads do
-  // not shorten it (docs/PERFORMANCE.md, "Measurements behind design choices"), their wake-ups
-  // spin on a busy machine, and their sums' order would make the layout depend on the thread count.
-  set_blas_threads(1);
+  // OpenBLAS's pool is the host's unless it opted in to a thread count (wefm.h, "Process policy").
+  // Either way the layout does not depend on opt.threads: OpenBLAS splits a call by its own thread
+  // count and the call's sizes, never by which or how many threads call it, and every BLAS call
+  // of a solve has the same sizes for any opt.threads.
+  apply_solve_blas_threads();
   Stage(in).check(0.0, "coefficients");
   return Attempt(in, t_start).run();
 }
