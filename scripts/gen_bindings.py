@@ -56,7 +56,7 @@ POINTER_ALIASES = {"double": "_d", "int32_t": "_i32", "int64_t": "_i64"}
 # A non-const pointer to a number that no `capacity` parameter follows is either one value the call
 # writes (Fortran: a scalar with intent(out)) or an array of `n` values (Fortran: type(c_ptr), value,
 # so c_null_ptr may be passed). Types cannot tell which; the header's parameter names do.
-SCALAR_OUTPUT_NAMES = {"count", "repeated", "solved", "loop"}  # and every name ending in _id
+SCALAR_OUTPUT_NAMES = {"count", "repeated", "solved", "loop", "value"}  # and every name ending in _id
 PER_POINT_OUTPUT_NAMES = {"xyz", "uv", "point_status", "triangles"}
 
 

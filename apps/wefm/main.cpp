@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "huge_page_malloc.hpp"
+#include "process_policy.hpp"
 #include "stop.hpp"
 #include "wefm/wefm.h"
 
@@ -86,6 +87,7 @@ int main(int argc, char** argv) {
   wefm_cli::hold_stop_signals();
   wefm_cli::reexec_with_huge_page_malloc(argc, argv);
   wefm_cli::install_stop_handlers();
+  wefm_cli::opt_in_process_policy();
   // No exception may escape: an unexpected one (std::bad_alloc while writing outputs) becomes a
   // message and the solver-failure code rather than std::terminate.
   int code = wefm_cli::kExitSolver;

@@ -26,6 +26,8 @@ PROTOTYPES = {
     "version": (c_char_p, "", []),
     "version_number": (c_int, "", []),
     "has_suitesparse": (c_int, "", []),
+    "set_process_policy": (_S, "key value", [c_int, c_int64]),
+    "get_process_policy": (_S, "key value", [c_int, _i64]),
     "options_init": (_S, "options struct_size", [POINTER(Options), c_size_t]),
     "mesh_info_init": (_S, "info struct_size", [POINTER(MeshInfo), c_size_t]),
     "mesh_read": (_S, "path merge_tolerance out", [c_char_p, c_double, _vpp]),

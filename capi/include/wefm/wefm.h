@@ -48,22 +48,35 @@
  *              more the global method's symbolic analysis takes one of them, beside the
  *              coefficients and assembly on the others. Work is cut into pieces fixed by the face
  *              alone and every sum runs in a fixed order, so layouts are bit-identical for any
- *              thread count. The BLAS calls run on the calling threads: a solve sets the OpenBLAS
- *              pool to 1 thread, process-wide (OPENBLAS_NUM_THREADS=1 stops the pool altogether),
- *              and where CHOLMOD still factorises, its OpenMP loops run on the solving thread
- *              alone (its OpenMP max-active-levels is 0 during the factorisation, restored after;
- *              other threads are not affected). Measured times by thread count: docs/PERFORMANCE.md.
- * Memory.      A solve advises its large arrays (4 MB and up) for transparent huge pages
- *              (madvise MADV_HUGEPAGE, while the system's free memory is ample): otherwise the first
- *              touch of every 4 KB page is a page fault, which is costly on a virtual machine.
- *              In CHOLMOD builds the first solve also points SuiteSparse's global malloc and calloc
- *              (SuiteSparse_config) at wrappers that add that advice, process-wide, once, and only
- *              if the host program has not installed its own allocator there; the blocks stay
- *              ordinary malloc blocks, freed by free(). WEFM_HUGE_PAGES=0 in the environment (read
- *              once) turns both off. What the library cannot advise (smaller blocks, Eigen's
- *              arrays) a host on glibc >= 2.35 reaches by starting with
- *              GLIBC_TUNABLES=glibc.malloc.hugetlb=1 in its environment, as the wefm tool does
- *              (apps/README.md, "Environment").
+ *              thread count. The BLAS calls run on the calling threads, and OpenBLAS's own pool
+ *              stays as the host set it (openblas_set_num_threads, OPENBLAS_NUM_THREADS): OpenBLAS
+ *              splits a call by its own thread count and the call's sizes, which do not depend on
+ *              wefm's, so the layouts stay bit-identical for any wefm thread count under any one
+ *              OpenBLAS setting. A host may have every solve set the pool instead
+ *              (WEFM_PROCESS_BLAS_THREADS; the wefm tool sets 1). Where CHOLMOD still factorises,
+ *              its OpenMP loops run on the solving thread alone: that thread's OpenMP
+ *              max-active-levels is 0 during the factorisation and restored after (a per-thread
+ *              setting in OpenMP 5 and libgomp; no other thread sees it). Measured times by thread
+ *              count: docs/PERFORMANCE.md.
+ * Process.     No function changes what belongs to the whole process: OpenBLAS's threads, OpenMP's
+ *              settings, SuiteSparse's global configuration (SuiteSparse_config), the allocator,
+ *              signal handlers, the locale, the environment, the floating-point environment or
+ *              resource limits stay as the host set them, and no memory the library does not
+ *              hold is advised. Two of them speed a large solve up; a host opts in with
+ *              wefm_set_process_policy() (WEFM_PROCESS_BLAS_THREADS, WEFM_PROCESS_HUGE_PAGES),
+ *              as the wefm tool does for itself. What the default gives up (a 1M-triangle face at
+ *              s = 0 and 1): docs/PERFORMANCE.md, "Process policy".
+ * Memory.      With WEFM_PROCESS_HUGE_PAGES on, a solve advises its large arrays (4 MB and up) for
+ *              transparent huge pages (madvise MADV_HUGEPAGE, while the system's free memory is
+ *              ample): otherwise the first touch of every 4 KB page is a page fault, which is
+ *              costly on a virtual machine; in CHOLMOD builds SuiteSparse's malloc and calloc go
+ *              through wrappers that add that advice. Off by default: the advice outlives the
+ *              block on its address range, which the host's allocator reuses. What the library
+ *              cannot advise (smaller blocks, Eigen's arrays) a host on glibc >= 2.35 reaches by
+ *              starting with GLIBC_TUNABLES=glibc.malloc.hugetlb=1 in its environment, as the
+ *              wefm tool does (apps/README.md, "Environment"). The library reads one environment
+ *              variable, WEFM_FLOAT_FACTOR (=0 keeps the preconditioner in double precision, for
+ *              diagnosis; docs/SOLVER.md), once.
  * Re-entrancy. A progress callback may call back into the face that is solving, but only to read it
  *              or stop it: wefm_face_cancel, wefm_face_retain, wefm_face_release, wefm_face_last_error,
  *              wefm_face_has_result, wefm_face_get_options, the topology queries (*_count, get_edge,
@@ -189,6 +202,46 @@ WEFM_API int wefm_version_number(void);
 /** Non-zero if this build factorises with SuiteSparse CHOLMOD, zero for the Eigen-only build (where
  *  WEFM_SOLVER_CHOLMOD gives WEFM_ERROR_UNSUPPORTED). Never fails. */
 WEFM_API int wefm_has_suitesparse(void);
+
+/* ============================================================================================= */
+/* Process policy                                                                                */
+/* ============================================================================================= */
+
+/** Keys of wefm_set_process_policy(): settings of the whole process that the library changes only
+ *  when the host asks ("Process." at the top). Every key is 0, hands off, until it is set. */
+typedef enum wefm_process_policy {
+  /** OpenBLAS's thread count. 0 (the default): the library never sets it; the pool stays as the
+   *  host set it. n >= 1: every solve (wefm_face_solve) sets OpenBLAS's pool to n threads,
+   *  process-wide, and leaves it so; the wefm tool sets 1. 1 spares a solve the pool threads'
+   *  spin-waits between its many small BLAS calls. WEFM_ERROR_UNSUPPORTED for n >= 1 where the
+   *  process has no OpenBLAS. */
+  WEFM_PROCESS_BLAS_THREADS = 1,
+  /** Transparent huge pages. 0 (the default): no advice, SuiteSparse_config untouched. 1: the
+   *  library advises its large arrays for huge pages ("Memory." at the top) and, in CHOLMOD builds,
+   *  points SuiteSparse_config.malloc_func and calloc_func at wrappers that add that advice where
+   *  they hold the C library's malloc and calloc (a host's own allocator there is kept; blocks stay
+   *  ordinary malloc blocks, freed by free()). Setting 0 again stops the advice and puts malloc and
+   *  calloc back where the wrappers still are. Set it while no SuiteSparse call runs in the
+   *  process (SuiteSparse_config is a plain global). */
+  WEFM_PROCESS_HUGE_PAGES = 2
+} wefm_process_policy;
+
+/**
+ * Sets a process policy: the host's explicit permission for the library to change a setting of the
+ * whole process. Applies to the solves that start after the call.
+ * @param key    a wefm_process_policy.
+ * @param value  see the key; 0 is always hands off.
+ * @return WEFM_ERROR_INVALID_ARGUMENT for an unknown key or a value out of the key's range
+ *         (BLAS threads 0 .. 1024, huge pages 0 or 1); WEFM_ERROR_UNSUPPORTED as the key says.
+ *         On failure nothing changes and wefm_last_error() names the key and value.
+ */
+WEFM_API wefm_status wefm_set_process_policy(wefm_process_policy key, int64_t value);
+
+/**
+ * The value a process policy holds (0 until wefm_set_process_policy() set it).
+ * @return WEFM_ERROR_INVALID_ARGUMENT for an unknown key.
+ */
+WEFM_API wefm_status wefm_get_process_policy(wefm_process_policy key, int64_t* value);
 
 /* ============================================================================================= */
 /* Options                                                                                       */

@@ -24,10 +24,26 @@
 
 namespace wefm {
 
-void set_blas_threads(int threads) {
-  using SetFn = void (*)(int);
-  static const SetFn set = reinterpret_cast<SetFn>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (set) set(threads < 1 ? 1 : threads);
+namespace {
+using SetBlasThreads = void (*)(int);
+SetBlasThreads blas_threads_setter() {
+  static const SetBlasThreads set = reinterpret_cast<SetBlasThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  return set;
+}
+std::atomic<int> g_solve_blas_threads{0};
+}  // namespace
+
+bool set_solve_blas_threads(int threads) {
+  if (threads > 0 && !blas_threads_setter()) return false;
+  g_solve_blas_threads.store(threads < 0 ? 0 : threads);
+  return true;
+}
+
+int solve_blas_threads() { return g_solve_blas_threads.load(); }
+
+void apply_solve_blas_threads() {
+  const int threads = g_solve_blas_threads.load();
+  if (threads > 0 && blas_threads_setter()) blas_threads_setter()(threads);
 }
 
 namespace {
@@ -64,7 +80,9 @@ void require_blas_workspace(int threads) {
 // OpenMP regions opened by the calling thread run on it alone while this lives: the
 // max-active-levels ICV of the calling thread's data environment is set to 0 and restored
 // (OpenMP 5: a per-thread setting, so other threads and later regions of the caller are
-// untouched). Through dlsym, as for OpenBLAS: a no-op when no OpenMP runtime is loaded.
+// untouched; libgomp 12 keeps it per thread, a thread's change seen by no other, which
+// tests/capi/test_host_process.cpp checks). Through dlsym, as for OpenBLAS: a no-op when no
+// OpenMP runtime is loaded.
 class SerialOpenMP {
  public:
   SerialOpenMP() {
@@ -222,7 +240,6 @@ struct SparseCholeskyT<Scalar>::Impl {
 #ifdef WEFM_HAVE_CHOLMOD
     // CHOLMOD reports problems on stdout/stderr by default; the library reports them as statuses.
     cholmod.cholmod().print = 0;
-    if (use_cholmod) use_huge_pages_in_suitesparse();
     // Ordering: AMD; where its fill is poor (CHOLMOD's test) a geometric nested dissection when
     // the caller gave points (set_ordering_points); METIS (CHOLMOD's default fallback) when that is
     // poor too and beyond a planar graph's growth (ordering_choice.hpp). On a large disk the

@@ -3,8 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <mutex>
+#include <atomic>
 #include <sys/mman.h>
 
 #ifdef WEFM_HAVE_CHOLMOD
@@ -16,6 +15,7 @@ namespace wefm {
 namespace {
 constexpr std::size_t kHugePage = std::size_t{2} << 20;
 constexpr std::size_t kMinBlock = std::size_t{4} << 20;
+std::atomic<bool> g_huge_pages{false};
 
 // Free memory in bytes (MemFree, not MemAvailable: page cache is not free for a huge page), or 0
 // when unknown.
@@ -31,13 +31,7 @@ std::size_t free_memory() {
 }
 }  // namespace
 
-bool huge_pages_enabled() {
-  static const bool on = [] {
-    const char* v = std::getenv("WEFM_HUGE_PAGES");
-    return !(v && std::strcmp(v, "0") == 0);
-  }();
-  return on;
-}
+bool huge_pages_enabled() { return g_huge_pages.load(std::memory_order_relaxed); }
 
 void advise_huge_pages(void* p, std::size_t bytes) {
 #ifdef MADV_HUGEPAGE
@@ -72,26 +66,30 @@ void* huge_calloc(std::size_t count, std::size_t size) {
 
 #ifdef WEFM_HAVE_CHOLMOD
 namespace {
+// The C library's allocator back in SuiteSparse where the pointers are still ours.
+void restore_libc_allocator() {
+  if (SuiteSparse_config.malloc_func == &huge_malloc) SuiteSparse_config.malloc_func = &std::malloc;
+  if (SuiteSparse_config.calloc_func == &huge_calloc) SuiteSparse_config.calloc_func = &std::calloc;
+}
+
 // Puts the C library's allocator back if the library is unloaded while SuiteSparse stays loaded
 // (a host that loaded both): the pointers must not outlive this code.
 struct RestoreAtUnload {
-  ~RestoreAtUnload() {
-    if (SuiteSparse_config.malloc_func == &huge_malloc) SuiteSparse_config.malloc_func = &std::malloc;
-    if (SuiteSparse_config.calloc_func == &huge_calloc) SuiteSparse_config.calloc_func = &std::calloc;
-  }
+  ~RestoreAtUnload() { restore_libc_allocator(); }
 };
 }  // namespace
 #endif
 
-void use_huge_pages_in_suitesparse() {
+void set_huge_pages(bool on) {
+  g_huge_pages.store(on);
 #ifdef WEFM_HAVE_CHOLMOD
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (!huge_pages_enabled()) return;
+  if (on) {
     static RestoreAtUnload restore;
     if (SuiteSparse_config.malloc_func == &std::malloc) SuiteSparse_config.malloc_func = &huge_malloc;
     if (SuiteSparse_config.calloc_func == &std::calloc) SuiteSparse_config.calloc_func = &huge_calloc;
-  });
+  } else {
+    restore_libc_allocator();
+  }
 #endif
 }
 

@@ -19,11 +19,15 @@ struct FactorCounters {
 
 bool have_cholmod();
 
-// Threads of the BLAS under CHOLMOD (OpenBLAS's own pool, process-wide), when the BLAS exposes the
-// setting; a no-op otherwise. One thread by default: the supernodal solves are chains of small
-// BLAS calls whose threads spin-wait (sched_yield) on a busy machine; measured at 100k triangles
-// with the other core loaded, 2 threads took 2.2x the time of 1.
-void set_blas_threads(int threads);
+// The OpenBLAS thread count every solve sets (openblas_set_num_threads, process-wide) when the host
+// opted in (the C API's process policy); 0, the default, leaves the host's setting alone. The
+// supernodal solves are chains of small BLAS calls whose pool threads spin-wait (sched_yield) on a
+// busy machine, hence the opt-in (docs/PERFORMANCE.md). Returns false, changing nothing, for
+// threads > 0 where the process has no OpenBLAS.
+bool set_solve_blas_threads(int threads);
+int solve_blas_threads();
+// Sets OpenBLAS's pool to solve_blas_threads() when that is above 0; a no-op otherwise.
+void apply_solve_blas_threads();
 
 // Process-wide switch for tests and A/B timings: with true (the default) the numeric factorisations
 // of a complex CHOLMOD factor are wefm's own (supernodal_refactor.hpp) on CHOLMOD's analysis; with

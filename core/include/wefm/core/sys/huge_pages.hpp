@@ -4,14 +4,24 @@
 // to be a large share of the solve (docs/PERFORMANCE.md, "Measurements behind design choices").
 // Advised blocks fault in 2 MB at a time, 512 times fewer faults. Linux honours the advice when
 // /sys/kernel/mm/transparent_hugepage/enabled is `always` or `madvise` (Debian's default);
-// elsewhere it is a no-op. WEFM_HUGE_PAGES=0 in the environment turns it off.
+// elsewhere it is a no-op. Off unless the host asks for it (set_huge_pages, the C API's process
+// policy): the advice stays on the address range after the block is freed, where the host's
+// allocator hands it out again, so it is the host's choice, like SuiteSparse's allocator.
 #include <cstddef>
 #include <vector>
 
 namespace wefm {
 
-// Whether advice is given (the environment is read once).
+// Whether advice is given: false until set_huge_pages(true).
 bool huge_pages_enabled();
+
+// Turns the advice on or off for the process. On also routes SuiteSparse's allocations (CHOLMOD's
+// factor and workspace) through huge_malloc / huge_calloc where SuiteSparse still uses the C
+// library's allocator (a host that installed its own keeps it); off puts the C library's back where
+// they are still ours. Blocks stay compatible with free(), so blocks allocated before or after a
+// switch mix freely. SuiteSparse_config is a plain global: the caller makes sure no SuiteSparse
+// call runs meanwhile.
+void set_huge_pages(bool on);
 
 // Advises the 2 MB-aligned interior of [p, p + bytes) for huge pages, for blocks of at least
 // 4 MB that are not yet touched (advice on touched pages is harmless: khugepaged may merge them).
@@ -45,12 +55,5 @@ void advise_huge_pages_sparse(Sparse& m) {
 // malloc / calloc that advise large blocks; the memory is freed with std::free.
 void* huge_malloc(std::size_t bytes);
 void* huge_calloc(std::size_t count, std::size_t size);
-
-// Routes SuiteSparse's allocations (CHOLMOD's factor and workspace) through huge_malloc /
-// huge_calloc, once per process, when SuiteSparse still uses the C library's allocator (a host
-// program that installed its own keeps it). Blocks stay compatible with free(), so blocks
-// allocated before or after the switch mix freely. A no-op without CHOLMOD or with
-// WEFM_HUGE_PAGES=0.
-void use_huge_pages_in_suitesparse();
 
 }  // namespace wefm
