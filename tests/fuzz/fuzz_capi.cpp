@@ -217,6 +217,18 @@ void queries(wefm_face* f, Input& in) {
   check(wefm_face_get_report(f, &r), f);
 }
 
+// The process policies are the host's (wefm.h, "Process."): only refusals are fuzzed, since an
+// accepted value would change the fuzzer's own process, and a refusal must change nothing.
+void refused_process_policy(Input& in) {
+  const auto key = static_cast<wefm_process_policy>(in.u8() % 4);  // 0 and 3 are no key
+  int64_t before = 0, after = 0;
+  const bool known = wefm_get_process_policy(key, &before) == WEFM_OK;
+  if (wefm_set_process_policy(key, -1 - static_cast<int64_t>(in.u8())) != WEFM_ERROR_INVALID_ARGUMENT)
+    violated("wefm_set_process_policy", "a negative value was accepted");
+  if (known && (wefm_get_process_policy(key, &after) != WEFM_OK || after != before))
+    violated("wefm_set_process_policy", "a refused value changed the policy");
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -301,5 +313,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
   }
   wefm_face_release(f);
+  refused_process_policy(in);  // last: the corpus's bytes keep their meaning for the calls above
   return 0;
 }
