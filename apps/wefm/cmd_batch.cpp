@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "batch_inputs.hpp"
+#include "batch_selection.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "face_job.hpp"
@@ -27,6 +28,8 @@ std::vector<OptionSpec> batch_specs() {
       {"use-topology", 0, "", "in face folders, use topo.json instead of face.seam", "", false},
       {"summary-json", 0, "FILE", "also write the summary table as JSON", "", false},
       {"quiet", 'q', "", "no per-face progress lines (the summary table is still printed)", "", false},
+      {"shard", 0, "I/N", "flatten only shard I of N (0-based I; every N-th face in name order)", "", false},
+      {"skip-existing", 0, "", "skip a face whose outputs exist from an earlier run (reported as skipped)", "", false},
   };
   for (auto& s : solver_option_specs()) specs.push_back(s);
   return specs;
@@ -40,12 +43,14 @@ void print_help() {
       "sub-folder holding face.obj (uses its face.seam when it has data, or topo.json with\n"
       "--use-topology), as in data/real. LISTFILE: one mesh file or face folder per line, # comments.\n"
       "One failing face is reported and the others go on. The exit code is 0 when every face succeeded,\n"
-      "else the largest code of any face (6 if cancelled).\n\nOptions:\n%s\n%s",
+      "else the largest code of any face (6 if cancelled).\n"
+      "Many machines: --shard I/N in each task of a job array (Slurm: --array=0-(N-1), --shard\n"
+      "$SLURM_ARRAY_TASK_ID/N); --skip-existing resumes a stopped run (docs/SCALE-OUT.md).\n\nOptions:\n%s\n%s",
       format_options(batch_specs()).c_str(), exit_codes_help());
 }
 
 const char* status_text(const FaceOutcome& o, bool started) {
-  if (!started) return "skipped";
+  if (!started) return "not started";
   switch (o.exit_code) {
     case kExitOk: return "ok";
     case kExitIo: return "io error";
@@ -92,18 +97,28 @@ int run_batch(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }
+  if (args.has("shard")) {
+    Shard shard;
+    if (!parse_shard(args.value("shard"), shard, error)) {
+      std::fprintf(stderr, "wefm batch: %s\n", error.c_str());
+      return kExitUsage;
+    }
+    keep_shard(items, shard);
+  }
   const std::filesystem::path outdir = args.value("output");
   if (outdir.empty()) {
     std::fprintf(stderr, "wefm batch: -o: empty directory name\n");
     return kExitUsage;
   }
   std::vector<NamedPath> inputs, outputs;
+  std::vector<std::vector<std::string>> item_outputs;  // what --skip-existing looks for
   for (const BatchItem& item : items) {
     inputs.push_back({"input", item.input});
     inputs.push_back({"seams of " + item.name, item.seams});
     inputs.push_back({"topology of " + item.name, item.topology});
     outputs.push_back({"output of " + item.name, (outdir / (item.name + ".obj")).string()});
     outputs.push_back({"report of " + item.name, (outdir / (item.name + ".json")).string()});
+    item_outputs.push_back({outputs[outputs.size() - 2].path, outputs.back().path});
   }
   if (args.has("summary-json")) outputs.push_back({"--summary-json", args.value("summary-json")});
   if (!check_output_paths(inputs, outputs, error)) {
@@ -118,12 +133,26 @@ int run_batch(const std::vector<std::string>& argv) {
   CancelWatcher watcher;
   std::vector<FaceOutcome> results(items.size());
   std::vector<char> started(items.size(), 0);
+  // Faces done by an earlier run keep their outputs; the summary shows what those reports say.
+  std::vector<char> skipped(items.size(), 0);
+  if (args.has("skip-existing"))
+    for (size_t i = 0; i < items.size(); ++i)
+      skipped[i] = earlier_result(item_outputs[i], item_outputs[i].back(), results[i]);
   std::atomic<size_t> next{0};
   std::atomic<size_t> finished{0};
   std::mutex print_mutex;
   auto worker = [&] {
     for (size_t i; !interrupted() && (i = next++) < items.size();) {
       const BatchItem& item = items[i];
+      if (skipped[i]) {
+        started[i] = 1;
+        const size_t done = ++finished;
+        if (!quiet) {
+          std::lock_guard<std::mutex> lock(print_mutex);
+          std::fprintf(stderr, "[%zu/%zu] %s: skipped (outputs exist)\n", done, items.size(), item.name.c_str());
+        }
+        continue;
+      }
       FaceJob job;
       job.input = item.input;
       job.output_obj = (outdir / (item.name + ".obj")).string();
@@ -164,7 +193,7 @@ int run_batch(const std::vector<std::string>& argv) {
                 static_cast<long long>(o.snap.info.triangles), has ? fmt("%.4f", r.score).c_str() : "-",
                 has ? std::to_string(r.flipped_triangles).c_str() : "-",
                 has ? std::to_string(r.boundary_intersections).c_str() : "-", o.time.total,
-                status_text(o, started[i]));
+                skipped[i] ? "skipped" : status_text(o, started[i]));
     const int code = started[i] ? o.exit_code : stop_exit_code();
     if (code == kExitOk) ++ok;
     exit_code = std::max(exit_code, code);
@@ -176,17 +205,20 @@ int run_batch(const std::vector<std::string>& argv) {
     row["flipped_triangles"] = has ? nlohmann::ordered_json(r.flipped_triangles) : nlohmann::ordered_json(nullptr);
     row["boundary_intersections"] = has ? nlohmann::ordered_json(r.boundary_intersections) : nlohmann::ordered_json(nullptr);
     row["time"] = o.time.total;
-    row["status"] = status_text(o, started[i]);
+    row["status"] = skipped[i] ? "skipped" : status_text(o, started[i]);
     row["exit_code"] = code;
     row["message"] = o.error;
     rows.push_back(std::move(row));
   }
   size_t partial = 0;  // not converged but written
   for (size_t i = 0; i < items.size(); ++i) partial += started[i] && results[i].exit_code == kExitSolver && results[i].snap.has_result;
-  std::printf("%zu faces: %zu ok, %zu not converged (written), %zu failed; outputs in %s\n", items.size(), ok, partial,
-              items.size() - ok - partial, outdir.string().c_str());
+  const size_t n_skipped = static_cast<size_t>(std::count(skipped.begin(), skipped.end(), 1));
+  std::printf("%zu faces: %zu ok, %zu not converged (written), %zu failed", items.size(), ok, partial,
+              items.size() - ok - partial);
+  if (args.has("skip-existing")) std::printf(" (%zu skipped: outputs exist)", n_skipped);
+  std::printf("; outputs in %s\n", outdir.string().c_str());
   for (size_t i = 0; i < items.size(); ++i)
-    if (results[i].exit_code != kExitOk)
+    if (results[i].exit_code != kExitOk && !skipped[i])
       std::fprintf(stderr, "wefm: %s: %s\n", items[i].name.c_str(), results[i].error.c_str());
   if (args.has("summary-json")) {
     if (const int code = write_file_atomically(args.value("summary-json"), rows.dump(2) + '\n', error)) {
