@@ -13,6 +13,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "face_job.hpp"
+#include "mesh_formats.hpp"
 #include "output_file.hpp"
 #include "output_paths.hpp"
 
@@ -24,6 +25,7 @@ std::vector<OptionSpec> batch_specs() {
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   std::vector<OptionSpec> specs = {
       {"output", 'o', "OUTDIR", "directory for <name>.obj and <name>.json (created; required)", "", false},
+      {"format", 0, mesh_format_names(), "format of the UV meshes OUTDIR/<name>.EXT", "obj", false},
       {"jobs", 'j', "N", "faces flattened at the same time, one thread each", std::to_string(hw), false},
       {"use-topology", 0, "", "in face folders, use topo.json instead of face.seam", "", false},
       {"summary-json", 0, "FILE", "also write the summary table as JSON", "", false},
@@ -92,6 +94,12 @@ int run_batch(const std::vector<std::string>& argv) {
     return kExitUsage;
   }
   const bool quiet = args.has("quiet");
+  MeshFormat format = MeshFormat::obj;
+  if (args.has("format") && !parse_mesh_format(args.value("format"), format, error)) {
+    std::fprintf(stderr, "wefm batch: --format: %s\n", error.c_str());
+    return kExitUsage;
+  }
+  const std::string ext = mesh_format_extension(format);
   std::vector<BatchItem> items;
   if (!find_batch_items(args.positionals[0], args.has("use-topology"), items, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
@@ -116,7 +124,7 @@ int run_batch(const std::vector<std::string>& argv) {
     inputs.push_back({"input", item.input});
     inputs.push_back({"seams of " + item.name, item.seams});
     inputs.push_back({"topology of " + item.name, item.topology});
-    outputs.push_back({"output of " + item.name, (outdir / (item.name + ".obj")).string()});
+    outputs.push_back({"output of " + item.name, (outdir / (item.name + ext)).string()});
     outputs.push_back({"report of " + item.name, (outdir / (item.name + ".json")).string()});
     item_outputs.push_back({outputs[outputs.size() - 2].path, outputs.back().path});
   }
@@ -155,7 +163,7 @@ int run_batch(const std::vector<std::string>& argv) {
       }
       FaceJob job;
       job.input = item.input;
-      job.output_obj = (outdir / (item.name + ".obj")).string();
+      job.output_mesh = (outdir / (item.name + ext)).string();
       job.settings = settings;
       job.settings.seams_path = item.seams;
       job.settings.topology_path = item.topology;

@@ -1,9 +1,10 @@
-// wefm flatten INPUT -o OUTPUT.obj [options]
+// wefm flatten INPUT -o OUTPUT.obj|.msh|.vtk|.vtu|.ply [options]
 #include <cstdio>
 
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "face_job.hpp"
+#include "mesh_formats.hpp"
 #include "output_paths.hpp"
 #include "summary.hpp"
 
@@ -13,7 +14,7 @@ namespace {
 
 std::vector<OptionSpec> flatten_specs() {
   std::vector<OptionSpec> specs = {
-      {"output", 'o', "OUT.obj", "UV mesh to write: v (3D), vt (UV per vertex use), f v/vt (required)", "", false},
+      {"output", 'o', "OUT.obj", "UV mesh to write, format by extension: .obj (v, vt per vertex use, f v/vt), .msh, .vtk, .vtu, .ply (required)", "", false},
       {"seams", 0, "FILE", "facet edges to cut along: two 0-based vertex indices per line, # comments", "", false},
       {"topology", 0, "FILE.json", "face topology: edges, loops, outer_loop, per-edge mode (topo.json schema)", "",
        false},
@@ -31,10 +32,10 @@ void print_help() {
   std::printf(
       "Usage: wefm flatten INPUT -o OUTPUT.obj [options]\n\n"
       "Flattens one face (INPUT: OBJ, OFF, STL ascii/binary or PLY) into a 2D domain and writes it as\n"
-      "an OBJ with UVs. Without --topology or --seams the loops are the mesh's boundary cycles; a closed\n"
-      "or annular face needs --seams, --topology or --auto-cut.\n\nOptions:\n%s\n"
+      "a mesh with UVs (the 3D vertices, a UV per vertex use). Without --topology or --seams the loops are\n"
+      "the mesh's boundary cycles; a closed or annular face needs --seams, --topology or --auto-cut.\n\n%s\nOptions:\n%s\n"
       "Progress goes to stderr (a bar on a terminal, 'progress:' lines otherwise); Ctrl-C cancels.\n\n%s",
-      format_options(flatten_specs()).c_str(), exit_codes_help());
+      mesh_formats_help(), format_options(flatten_specs()).c_str(), exit_codes_help());
 }
 
 int run_flatten(const std::vector<std::string>& argv) {
@@ -71,8 +72,13 @@ int run_flatten(const std::vector<std::string>& argv) {
   s.svg_path = opt("svg");
   s.quiet = args.has("quiet");
   job.input = args.positionals[0];
-  job.output_obj = args.value("output");
-  std::vector<NamedPath> outputs = {{"-o", job.output_obj}};
+  job.output_mesh = args.value("output");
+  MeshFormat format = MeshFormat::obj;
+  if (!mesh_format_of(job.output_mesh, format, error)) {
+    std::fprintf(stderr, "wefm flatten: -o: %s\n", error.c_str());
+    return kExitUsage;
+  }
+  std::vector<NamedPath> outputs = {{"-o", job.output_mesh}};
   for (const char* name : {"write-topology", "report", "svg"})
     if (args.has(name)) outputs.push_back({std::string("--") + name, args.value(name)});
   if (!check_output_paths({{"input", job.input}, {"--seams", s.seams_path}, {"--topology", s.topology_path}}, outputs,
@@ -80,7 +86,7 @@ int run_flatten(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "wefm flatten: %s\n", error.c_str());
     return kExitUsage;
   }
-  for (const std::string* out : {&job.output_obj, &s.write_topology_path, &s.report_path, &s.svg_path}) {
+  for (const std::string* out : {&job.output_mesh, &s.write_topology_path, &s.report_path, &s.svg_path}) {
     if (!out->empty() && !make_parent_dirs(*out, error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       return kExitIo;
@@ -103,6 +109,6 @@ int run_flatten(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-Command flatten_command() { return {"flatten", "flatten one face to a UV OBJ (+ report, picture, topology)", run_flatten}; }
+Command flatten_command() { return {"flatten", "flatten one face to a UV mesh: OBJ, MSH, VTK, VTU or PLY (+ report, picture, topology)", run_flatten}; }
 
 }  // namespace wefm_cli

@@ -1,5 +1,6 @@
 // wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite] [options]: flatten, mesh the domain,
-// write the 3D mesh (OBJ, quads as four-vertex faces), its 2D domain mesh and the quality report.
+// write the 3D mesh (OBJ, MSH, VTK, VTU or PLY by extension; quads as four-node elements), its 2D
+// domain mesh and the quality report.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "flatten_settings.hpp"
+#include "mesh_formats.hpp"
 #include "output_file.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
@@ -23,7 +25,7 @@ namespace {
 
 std::vector<OptionSpec> mesh_specs() {
   std::vector<OptionSpec> specs = {
-      {"output", 'o', "MESH.obj", "3D mesh to write: v (3D), vt (UV), f (triangles or quads) (required)", "", false},
+      {"output", 'o', "MESH.obj", "3D mesh to write, format by extension (.obj: v, vt, f triangles or quads; .msh, .vtk, .vtu, .ply) (required)", "", false},
       {"size", 0, "H", "target 3D element size (required)", "", false},
       {"type", 0, "free|transfinite", "free triangles, or a transfinite (mapped) mesh on four corners", "free", false},
       {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
@@ -33,7 +35,7 @@ std::vector<OptionSpec> mesh_specs() {
       {"min-angle", 0, "DEG", "free: UV angle bound of the circumcentre refinement after the front", "28", false},
       {"corner-angle", 0, "DEG", "loop vertices turning more than this stay boundary nodes", "30", false},
       {"max-elements", 0, "N", "fail rather than exceed this many elements (0 = no cap)", "0", false},
-      {"domain-obj", 0, "FILE.obj", "2D domain mesh to write (v u v 0); default MESH.domain.obj", "", false},
+      {"domain-obj", 0, "FILE.obj", "2D domain mesh to write (points u v 0), format by extension; default MESH.domain.EXT (-o's extension)", "", false},
       {"seams", 0, "FILE", "facet edges to cut along: two 0-based vertex indices per line, # comments", "", false},
       {"topology", 0, "FILE.json", "face topology: edges, loops, outer_loop, per-edge mode (topo.json schema)", "",
        false},
@@ -51,15 +53,16 @@ void print_help() {
       "Flattens one face (as wefm flatten, with the same options), meshes the 2D domain at the 3D size H\n"
       "and maps the mesh back to 3D. Free meshes are triangles (frontal-Delaunay placement sized in 3D +\n"
       "smoothing and optimisation judged in 3D); transfinite meshes are quads on four corners (a periodic\n"
-      "strip counts).\n\n"
+      "strip counts).\n\n%s\n"
       "Options:\n%s\n%s",
-      format_options(mesh_specs()).c_str(), exit_codes_help());
+      mesh_formats_help(), format_options(mesh_specs()).c_str(), exit_codes_help());
 }
 
-std::string default_domain_path(const std::string& obj) {
-  const size_t dot = obj.rfind('.'), slash = obj.find_last_of("/\\");
-  const std::string stem = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? obj.substr(0, dot) : obj;
-  return stem + ".domain.obj";
+// MESH.domain.EXT beside MESH.EXT, in the same format (OBJ when -o has no extension).
+std::string default_domain_path(const std::string& mesh) {
+  const size_t dot = mesh.rfind('.'), slash = mesh.find_last_of("/\\");
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return has_ext ? mesh.substr(0, dot) + ".domain" + mesh.substr(dot) : mesh + ".domain.obj";
 }
 
 template <class T, class Getter>
@@ -86,17 +89,33 @@ double lo_lambda(const double* a, const double* b, const double* c) {
   return s > 0 ? 4 * std::sqrt(3.0) * area / s : 0;
 }
 
-int write_domain_obj(const std::string& path, const MeshArrays& m, std::string& error) {
-  std::ostringstream f;
-  f.precision(17);
-  f << "# wefm 2D domain mesh: v u v 0\n";
-  for (size_t i = 0; i + 1 < m.uv.size(); i += 2) f << "v " << m.uv[i] << ' ' << m.uv[i + 1] << " 0\n";
-  for (size_t e = 0; e < m.elements.size(); e += static_cast<size_t>(m.npe)) {
-    f << 'f';
-    for (int k = 0; k < m.npe; ++k) f << ' ' << m.elements[e + static_cast<size_t>(k)] + 1;
-    f << '\n';
-  }
-  return write_file_atomically(path, f.str(), error);
+// The 3D mesh: a UV per node (the domain mesh's nodes), one face group.
+int write_3d_mesh(const std::string& path, const MeshArrays& m, std::string& error) {
+  MeshDescription d;
+  d.comments = {"wefm domain mesh: " + std::to_string(m.xyz.size() / 3) + " nodes, " +
+                std::to_string(m.elements.size() / static_cast<size_t>(m.npe)) + " elements"};
+  d.xyz = m.xyz;
+  d.uv = m.uv;
+  d.elements = m.elements;
+  d.nodes_per_element = m.npe;
+  d.digits17 = true;
+  return write_mesh(path, d, error);
+}
+
+// The 2D domain mesh: points (u, v, 0).
+int write_domain_mesh(const std::string& path, const MeshArrays& m, std::string& error) {
+  MeshFormat format = MeshFormat::obj;
+  if (!mesh_format_of(path, format, error)) return kExitUsage;
+  std::vector<double> flat;
+  flat.reserve(m.uv.size() / 2 * 3);
+  for (size_t i = 0; i + 1 < m.uv.size(); i += 2) flat.insert(flat.end(), {m.uv[i], m.uv[i + 1], 0.0});
+  MeshDescription d;
+  d.comments = {format == MeshFormat::obj ? "wefm 2D domain mesh: v u v 0" : "wefm 2D domain mesh: points (u, v, 0)"};
+  d.xyz = flat;
+  d.elements = m.elements;
+  d.nodes_per_element = m.npe;
+  d.digits17 = true;
+  return write_mesh(path, format, d, error);
 }
 
 // Elements coloured from red (lambda 0.6 or less) to green (1); quads by their worse half.
@@ -225,8 +244,6 @@ class MeshRun {
     return ok || fail(kExitSolver, "reading the mesh: " + std::string(wefm_last_error()));
   }
 
-  const wefm_domain_mesh* domain_mesh() const { return dm_.get(); }
-
   double time_solve = 0;
   std::string warning;
   wefm_report flatten_report{};
@@ -312,6 +329,12 @@ int run_mesh(const std::vector<std::string>& argv) {
   const std::string input = args.positionals[0], out = args.value("output");
   const std::string domain = args.has("domain-obj") ? args.value("domain-obj") : default_domain_path(out);
   const std::string report_path = opt("report"), svg = opt("svg");
+  MeshFormat format = MeshFormat::obj;
+  for (const auto& [name, path] : {std::pair<const char*, const std::string*>{"-o", &out}, {"--domain-obj", &domain}})
+    if (!mesh_format_of(*path, format, error)) {
+      std::fprintf(stderr, "wefm mesh: %s: %s\n", name, error.c_str());
+      return kExitUsage;
+    }
   std::vector<NamedPath> outputs = {{"-o", out}, {args.has("domain-obj") ? "--domain-obj" : "the domain mesh (-o's .domain.obj)", domain}};
   for (const char* name : {"report", "svg"})
     if (args.has(name)) outputs.push_back({std::string("--") + name, args.value(name)});
@@ -335,14 +358,11 @@ int run_mesh(const std::vector<std::string>& argv) {
     std::fprintf(stderr, "wefm: %s: %s\n", input.c_str(), stop_reason().c_str());
     return stop_exit_code();
   }
-  // The library writes the OBJ itself (temporary + rename, WEFM_ERROR_IO when anything fails).
-  if (const wefm_status ws = wefm_domain_mesh_write_obj(run.domain_mesh(), out.c_str()); ws != WEFM_OK) {
-    std::fprintf(stderr, "wefm: cannot write %s: %s\n", out.c_str(), wefm_last_error());
-    return exit_code_for(ws) == kExitUsage ? kExitIo : exit_code_for(ws);
-  }
-  if (const int code = write_domain_obj(domain, run.arrays, error)) {
+  int written = write_3d_mesh(out, run.arrays, error);
+  if (written == kExitOk) written = write_domain_mesh(domain, run.arrays, error);
+  if (written != kExitOk) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return code;
+    return written;
   }
   if (!svg.empty()) {
     if (const int code = write_mesh_svg(svg, run.arrays, error)) {
@@ -388,6 +408,6 @@ int run_mesh(const std::vector<std::string>& argv) {
 
 }  // namespace
 
-Command mesh_command() { return {"mesh", "flatten one face, mesh the domain (free or transfinite), write the 3D mesh", run_mesh}; }
+Command mesh_command() { return {"mesh", "flatten one face, mesh the domain (free or transfinite), write the 3D mesh (OBJ, MSH, VTK, VTU, PLY)", run_mesh}; }
 
 }  // namespace wefm_cli

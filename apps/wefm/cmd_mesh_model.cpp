@@ -1,4 +1,4 @@
-// wefm mesh-model MODEL.step --size h -o model.msh|model.obj [-j N] [flatten options]
+// wefm mesh-model MODEL.step --size h -o model.msh|.obj|.vtk|.vtu|.ply [-j N] [flatten options]
 //
 // The paper's whole-model pipeline (§1.2): every model edge is discretised once in 3D at size h
 // (cad_edge_nodes), each face is flattened, gets those nodes on its edges (wefm_face_set_edge_nodes),
@@ -28,6 +28,7 @@
 #include "cad_model.hpp"
 #include "cad_wefm.hpp"
 #include "flatten_settings.hpp"
+#include "mesh_formats.hpp"
 #include "model_mesh.hpp"
 #include "output_file.hpp"
 #include "output_paths.hpp"
@@ -58,7 +59,7 @@ std::vector<OptionSpec> mesh_model_specs() {
   std::snprintf(ang, sizeof ang, "%g", d.angular_deflection);
   std::snprintf(smooth, sizeof smooth, "%d", m.smoothing_iterations);
   std::vector<OptionSpec> specs = {
-      {"output", 'o', "FILE.msh|FILE.obj", "the whole-model mesh: Gmsh MSH 4.1 ASCII or OBJ (required)", "", false},
+      {"output", 'o', "FILE.msh", "the whole-model mesh, format by extension: .msh (Gmsh MSH 4.1 ASCII), .obj, .vtk, .vtu, .ply (required)", "", false},
       {"size", 0, "H", "target element size in model units (required unless --size-ratio)", "", false},
       {"size-ratio", 0, "R", "target size as a fraction of the bounding-box diagonal (e.g. 0.025 = 1/40)", "", false},
       {"jobs", 'j', "N", "faces meshed at the same time, one thread and one handle each", std::to_string(hw), false},
@@ -79,13 +80,14 @@ std::vector<OptionSpec> mesh_model_specs() {
 
 void print_help() {
   std::printf(
-      "Usage: wefm mesh-model MODEL.step|.iges|.brep (--size H | --size-ratio R) -o FILE.msh|FILE.obj [options]\n\n"
+      "Usage: wefm mesh-model MODEL.step|.iges|.brep (--size H | --size-ratio R) -o FILE.msh [options]\n\n"
       "Meshes a whole CAD model the paper's way: every model edge is discretised once in 3D at size H, so\n"
       "the faces sharing it get the same nodes; each face is flattened, meshed in its domain (free, or\n"
       "transfinite for the faces named with --transfinite) and mapped back; the face meshes are welded into\n"
-      "one conforming surface mesh. Writes Gmsh MSH 4.1 ASCII (a physical group per face) or OBJ (a group\n"
-      "per face); prints Lo's lambda per face and overall and the conformity count.\n\nOptions:\n%s\n%s",
-      format_options(mesh_model_specs()).c_str(), exit_codes_help());
+      "one conforming surface mesh. Writes Gmsh MSH 4.1 ASCII (a physical group \"face_N\" per face), OBJ (a\n"
+      "group per face), VTK, VTU or PLY (face_id per triangle); prints Lo's lambda per face and overall and\n"
+      "the conformity count.\n\n%s\nOptions:\n%s\n%s",
+      mesh_formats_help(), format_options(mesh_model_specs()).c_str(), exit_codes_help());
 }
 
 struct FaceMeshRun {
@@ -559,9 +561,9 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     return kExitUsage;
   }
   const std::string out_path = args.value("output");
-  const std::string ext = std::filesystem::path(out_path).extension().string();
-  if (ext != ".msh" && ext != ".obj") {
-    std::fprintf(stderr, "wefm mesh-model: -o: expected a .msh or .obj file, got '%s'\n", out_path.c_str());
+  MeshFormat format = MeshFormat::msh;
+  if (!mesh_format_of(out_path, format, error)) {
+    std::fprintf(stderr, "wefm mesh-model: -o: %s\n", error.c_str());
     return kExitUsage;
   }
   double size = 0;
@@ -728,8 +730,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   const ConformityCounts conf = whole.conformity();
   const LambdaStats q = whole.lambda();
   int exit_code = kExitOk;
-  if (!make_parent_dirs(out_path, error) ||
-      !(ext == ".msh" ? whole.write_msh(out_path, error) : whole.write_obj(out_path, error))) {
+  if (!make_parent_dirs(out_path, error) || write_mesh(out_path, format, whole.description(), error) != kExitOk) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     exit_code = kExitIo;
   }
@@ -828,7 +829,7 @@ int run_mesh_model(const std::vector<std::string>&) {
 }  // namespace
 
 Command mesh_model_command() {
-  return {"mesh-model", "mesh a whole CAD model into one conforming surface mesh (MSH or OBJ)", run_mesh_model};
+  return {"mesh-model", "mesh a whole CAD model into one conforming surface mesh (MSH, OBJ, VTK, VTU, PLY)", run_mesh_model};
 }
 
 }  // namespace wefm_cli

@@ -1,7 +1,7 @@
 // wefm model MODEL.step -o OUTDIR [-j N] [--deflection D] [flatten options]
 //
 // Imports a CAD model (apps/cad, Open CASCADE), writes every face as input files (OBJ + topo.json:
-// the face's own reproducer) and flattens them in parallel with the same per-face pipeline as
+// the face's own reproducer; OBJ whatever --format, as `wefm flatten` reads it) and flattens them in parallel with the same per-face pipeline as
 // `wefm flatten --topology` (face_job), one handle per thread. A face that fails to import or to
 // flatten is reported with its reason; the others carry on.
 #include <algorithm>
@@ -23,6 +23,7 @@
 #include "cad_face_files.hpp"
 #include "cad_model.hpp"
 #include "face_job.hpp"
+#include "mesh_formats.hpp"
 #include "model_atlas.hpp"
 #include "names.hpp"
 #include "output_file.hpp"
@@ -52,6 +53,7 @@ std::vector<OptionSpec> model_specs() {
        false},
       {"face", 0, "N", "flatten only face N (1-based, as in the index)", "", true},
       {"atlas", 0, "FILE.svg", "write an SVG atlas of all domains", "", false},
+      {"format", 0, mesh_format_names(), "format of the per-face UV meshes OUTDIR/fNNN.EXT (the input faces stay OBJ)", "obj", false},
       {"quiet", 'q', "", "no per-face progress lines (the summary table is still printed)", "", false},
   };
   for (auto& s : solver_option_specs())
@@ -65,7 +67,8 @@ void print_help() {
       "Imports a CAD model with Open CASCADE, tessellates every face (BRepMesh) and flattens all faces in\n"
       "parallel. Seam edges become repeated edges and model edges keep their ids across faces. Writes per\n"
       "face OUTDIR/input/fNNN.obj + fNNN.topo.json (the face as imported: `wefm flatten fNNN.obj --topology\n"
-      "fNNN.topo.json` reproduces it), OUTDIR/fNNN.obj (domain, UVs) and OUTDIR/fNNN.json (report), and\n"
+      "fNNN.topo.json` reproduces it), OUTDIR/fNNN.obj (domain, UVs; --format msh|vtk|vtu|ply for another\n"
+      "format, the face as physical group \"face_N\" or face_id N) and OUTDIR/fNNN.json (report), and\n"
       "OUTDIR/index.json for the model. Prints a summary by surface type. One failing face is reported\n"
       "and the others go on; the exit code is 0 when every face succeeded, else the largest code of any face.\n\n"
       "Options:\n%s\n%s",
@@ -79,6 +82,16 @@ std::string face_name(int index) {
 }
 
 Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+// The face as imported, the input of its flatten: OBJ, numbers that read back bit for bit.
+int write_face_input(const std::string& path, const wefm_cad::CadFace& f, const std::string& model_path, std::string& error) {
+  MeshDescription d;
+  d.comments = {"face " + std::to_string(f.index) + " (" + f.surface_type + ") of " + model_path};
+  d.xyz = f.xyz;
+  d.elements = f.triangles;
+  d.digits17 = true;
+  return write_mesh(path, MeshFormat::obj, d, error);
+}
 
 struct FaceRun {
   const wefm_cad::CadFace* face = nullptr;
@@ -226,6 +239,11 @@ int run_model(const std::vector<std::string>& argv) {
       only.insert(k);
     }
   const bool quiet = args.has("quiet");
+  MeshFormat format = MeshFormat::obj;
+  if (args.has("format") && !parse_mesh_format(args.value("format"), format, error)) {
+    std::fprintf(stderr, "wefm model: --format: %s\n", error.c_str());
+    return kExitUsage;
+  }
   const std::string model_path = args.positionals[0];
   const std::filesystem::path outdir = args.value("output");
   // The per-face files (.obj, .json) cannot be the model (.step, .iges, .brep); index.json and the
@@ -259,13 +277,13 @@ int run_model(const std::vector<std::string>& argv) {
     } else {
       r.input_obj = (outdir / "input" / (r.name + ".obj")).string();
       r.input_topo = (outdir / "input" / (r.name + ".topo.json")).string();
-      int code = write_file_atomically(r.input_obj, wefm_cad::face_obj_text(f, model_path), error);
+      int code = write_face_input(r.input_obj, f, model_path, error);
       if (code == kExitOk) code = write_file_atomically(r.input_topo, wefm_cad::face_topology_text(f, model_path), error);
       if (code != kExitOk) {
         std::fprintf(stderr, "wefm: %s\n", error.c_str());
         return code;
       }
-      r.domain_obj = (outdir / (r.name + ".obj")).string();
+      r.domain_obj = (outdir / (r.name + mesh_format_extension(format))).string();
       r.report = (outdir / (r.name + ".json")).string();
     }
     runs.push_back(std::move(r));
@@ -285,7 +303,8 @@ int run_model(const std::vector<std::string>& argv) {
       if (r.input_obj.empty()) continue;  // import failed: nothing to flatten
       FaceJob job;
       job.input = r.input_obj;
-      job.output_obj = r.domain_obj;
+      job.output_mesh = r.domain_obj;
+      job.face_tag = r.face->index;
       job.settings = settings;
       job.settings.topology_path = r.input_topo;
       job.settings.report_path = r.report;

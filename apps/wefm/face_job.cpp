@@ -7,7 +7,7 @@
 
 #include "domain_picture.hpp"
 #include "exit_codes.hpp"
-#include "obj_output.hpp"
+#include "mesh_formats.hpp"
 #include "report_output.hpp"
 #include "seams_file.hpp"
 #include "owned.hpp"
@@ -37,6 +37,25 @@ std::string annotate_edges(const std::string& msg, const std::vector<long long>&
   }
   out.append(msg, i, std::string::npos);
   return out;
+}
+
+// The layout as a mesh file: the 3D vertices in input order, a UV per vertex use, one face group.
+MeshDescription layout_mesh(const FaceJob& job, const FaceSnapshot& snap, MeshFormat format) {
+  MeshDescription m;
+  m.comments.push_back(std::string("wefm ") + wefm_version() + " flatten of " + job.input);
+  if (format == MeshFormat::obj) m.comments.push_back("v: 3D vertices in input order; vt: UV per vertex use; f: vertex/use (1-based)");
+  m.xyz = snap.xyz;
+  m.uv = snap.uv;
+  m.elements = snap.tris;
+  if (snap.tri_uses.size() == snap.tris.size()) m.corner_uv = snap.tri_uses;
+  m.groups = {{job.face_tag, "face_" + std::to_string(job.face_tag)}};
+  return m;
+}
+
+int write_layout(const FaceJob& job, const FaceSnapshot& snap, std::string& error) {
+  MeshFormat format = MeshFormat::obj;
+  if (!mesh_format_of(job.output_mesh, format, error)) return kExitUsage;
+  return write_mesh(job.output_mesh, format, layout_mesh(job, snap, format), error);
 }
 
 template <class T, class Getter>
@@ -234,8 +253,7 @@ class Runner {
       return false;
     };
     const FaceSnapshot& snap = out_.snap;
-    if (!job_.output_obj.empty() && !done(write_uv_obj(job_.output_obj, job_.input, snap, error), "uv mesh", job_.output_obj))
-      return;
+    if (!job_.output_mesh.empty() && !done(write_layout(job_, snap, error), "uv mesh", job_.output_mesh)) return;
     if (!s_.svg_path.empty() && !done(write_domain_picture(s_.svg_path, snap, error), "domain picture", s_.svg_path))
       return;
     if (!s_.write_topology_path.empty() &&

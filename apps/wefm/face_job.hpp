@@ -13,7 +13,8 @@ namespace wefm_cli {
 
 struct FaceJob {
   std::string input;            // mesh file
-  std::string output_obj;       // UV OBJ to write ("" = none)
+  std::string output_mesh;      // UV mesh to write, format by extension (mesh_formats.hpp; "" = none)
+  int face_tag = 1;             // its face group (MSH physical group "face_<tag>", cell data face_id)
   FlattenSettings settings;     // options and the optional side files
   bool show_progress = false;
   std::string progress_prefix;  // batch: the face name

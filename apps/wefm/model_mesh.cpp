@@ -2,12 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <map>
-#include <sstream>
-
-#include "exit_codes.hpp"
-#include "output_file.hpp"
 
 namespace wefm_cli {
 
@@ -323,68 +318,16 @@ LambdaStats ModelMesh::lambda_of(const std::vector<double>& xyz, const std::vect
 
 LambdaStats ModelMesh::lambda() const { return lambda_of(xyz_, tris_); }
 
-bool ModelMesh::write_msh(const std::string& path, std::string& error) const {
-  std::ostringstream out;
-  char buf[256];
-  out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << face_tags_.size() << '\n';
-  for (int f : face_tags_) out << "2 " << f << " \"face_" << f << "\"\n";
-  out << "$EndPhysicalNames\n$Entities\n0 0 " << face_tags_.size() << " 0\n";
-  std::map<int, std::array<double, 6>> box;
-  for (size_t v = 0; v < node_face_.size(); ++v) {
-    auto it = box.find(node_face_[v]);
-    if (it == box.end()) it = box.emplace(node_face_[v], std::array<double, 6>{1e300, 1e300, 1e300, -1e300, -1e300, -1e300}).first;
-    for (int c = 0; c < 3; ++c) {
-      it->second[static_cast<size_t>(c)] = std::min(it->second[static_cast<size_t>(c)], xyz_[3 * v + static_cast<size_t>(c)]);
-      it->second[static_cast<size_t>(c) + 3] = std::max(it->second[static_cast<size_t>(c) + 3], xyz_[3 * v + static_cast<size_t>(c)]);
-    }
-  }
-  for (int f : face_tags_) {
-    std::array<double, 6> b{0, 0, 0, 0, 0, 0};
-    if (box.count(f)) b = box.at(f);
-    std::snprintf(buf, sizeof buf, "%d %.17g %.17g %.17g %.17g %.17g %.17g 1 %d 0\n", f, b[0], b[1], b[2], b[3], b[4], b[5], f);
-    out << buf;
-  }
-  out << "$EndEntities\n$Nodes\n";
-  std::map<int, std::vector<int32_t>> nodes_of;
-  for (size_t v = 0; v < node_face_.size(); ++v) nodes_of[node_face_[v]].push_back(static_cast<int32_t>(v));
-  out << nodes_of.size() << ' ' << nodes() << " 1 " << nodes() << '\n';
-  for (const auto& [f, vs] : nodes_of) {
-    out << "2 " << f << " 0 " << vs.size() << '\n';
-    for (int32_t v : vs) out << v + 1 << '\n';
-    for (int32_t v : vs) {
-      std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g\n", xyz_[3 * static_cast<size_t>(v)], xyz_[3 * static_cast<size_t>(v) + 1],
-                    xyz_[3 * static_cast<size_t>(v) + 2]);
-      out << buf;
-    }
-  }
-  out << "$EndNodes\n$Elements\n";
-  std::map<int, std::vector<size_t>> tris_of;
-  for (size_t t = 0; t < tri_face_.size(); ++t) tris_of[tri_face_[t]].push_back(t);
-  out << tris_of.size() << ' ' << triangles() << " 1 " << triangles() << '\n';
-  for (const auto& [f, ts] : tris_of) {
-    out << "2 " << f << " 2 " << ts.size() << '\n';
-    for (size_t t : ts) out << t + 1 << ' ' << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';
-  }
-  out << "$EndElements\n";
-  return write_file_atomically(path, out.str(), error) == kExitOk;
-}
-
-bool ModelMesh::write_obj(const std::string& path, std::string& error) const {
-  std::ostringstream out;
-  char buf[96];
-  for (size_t v = 0; v + 2 < xyz_.size(); v += 3) {
-    std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g\n", xyz_[v], xyz_[v + 1], xyz_[v + 2]);
-    out << buf;
-  }
-  int current = -1;
-  for (size_t t = 0; t < tri_face_.size(); ++t) {
-    if (tri_face_[t] != current) {
-      current = tri_face_[t];
-      out << "g face_" << current << '\n';
-    }
-    out << "f " << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';
-  }
-  return write_file_atomically(path, out.str(), error) == kExitOk;
+MeshDescription ModelMesh::description() const {
+  MeshDescription d;
+  d.xyz = xyz_;
+  d.elements = tris_;
+  d.element_group = tri_face_;
+  d.point_group = node_face_;
+  for (int f : face_tags_) d.groups.push_back({f, "face_" + std::to_string(f)});
+  d.obj_groups = true;
+  d.digits17 = true;
+  return d;
 }
 
 }  // namespace wefm_cli

@@ -11,6 +11,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mesh_formats.hpp"
+
 namespace wefm_cli {
 
 // Points by grid cells of side `tol`: the point within `tol` (per coordinate) of a query, if any.
@@ -82,10 +84,9 @@ class ModelMesh {
   LambdaStats lambda() const;
   static LambdaStats lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
 
-  // Gmsh MSH 4.1 ASCII, one surface entity and physical group ("face_N") per face; OBJ with one group
-  // per face. Both return false + message when the file cannot be written.
-  bool write_msh(const std::string& path, std::string& error) const;
-  bool write_obj(const std::string& path, std::string& error) const;
+  // The mesh for a file (mesh_formats.hpp), a view of this object: one group "face_N" per face (MSH
+  // physical group and entity, OBJ `g`, face_id), each node under the face that first contributed it.
+  MeshDescription description() const;
 
   int64_t nodes() const { return static_cast<int64_t>(xyz_.size() / 3); }
   int64_t triangles() const { return static_cast<int64_t>(tris_.size() / 3); }

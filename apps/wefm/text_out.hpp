@@ -50,6 +50,13 @@ class TextOut {
     reserve(32);
     n_ = static_cast<size_t>(std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v).ptr - buf_.data());
   }
+  // printf's %.*g.
+  void general(double v, int precision) {
+    reserve(64);
+    auto r = std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v, std::chars_format::general, precision);
+    if (r.ec != std::errc()) return put("0");
+    n_ = static_cast<size_t>(r.ptr - buf_.data());
+  }
   void fixed(double v, int precision) {
     reserve(64);
     auto r = std::to_chars(buf_.data() + n_, buf_.data() + buf_.size(), v, std::chars_format::fixed, precision);
