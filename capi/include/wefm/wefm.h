@@ -52,12 +52,12 @@
  *              stays as the host set it (openblas_set_num_threads, OPENBLAS_NUM_THREADS): OpenBLAS
  *              splits a call by its own thread count and the call's sizes, which do not depend on
  *              wefm's, so the layouts stay bit-identical for any wefm thread count under any one
- *              OpenBLAS setting. A host may have every solve set the pool instead
- *              (WEFM_PROCESS_BLAS_THREADS; the wefm tool sets 1). Where CHOLMOD still factorises,
- *              its OpenMP loops run on the solving thread alone: that thread's OpenMP
- *              max-active-levels is 0 during the factorisation and restored after (a per-thread
- *              setting in OpenMP 5 and libgomp; no other thread sees it). Measured times by thread
- *              count: docs/PERFORMANCE.md.
+ *              OpenBLAS setting (another OpenBLAS thread count moves their last bits). A host may
+ *              have every solve set the pool instead (WEFM_PROCESS_BLAS_THREADS; the wefm tool
+ *              sets 1). Where CHOLMOD still factorises, its OpenMP loops run on the solving
+ *              thread alone: that thread's OpenMP max-active-levels is 0 during the factorisation
+ *              and restored after (a per-thread setting in OpenMP 5 and libgomp; no other thread
+ *              sees it). Measured times by thread count: docs/PERFORMANCE.md.
  * Process.     No function changes what belongs to the whole process: OpenBLAS's threads, OpenMP's
  *              settings, SuiteSparse's global configuration (SuiteSparse_config), the allocator,
  *              signal handlers, the locale, the environment, the floating-point environment or
@@ -77,15 +77,16 @@
  *              wefm tool does (apps/README.md, "Environment"). The library reads one environment
  *              variable, WEFM_FLOAT_FACTOR (=0 keeps the preconditioner in double precision, for
  *              diagnosis; docs/SOLVER.md), once.
- * Re-entrancy. A progress callback may call back into the face that is solving, but only to read it
- *              or stop it: wefm_face_cancel, wefm_face_retain, wefm_face_release, wefm_face_last_error,
+ * Re-entrancy. A progress callback may call back into the face that is solving or meshing, but only
+ *              to read it or stop it: wefm_face_cancel, wefm_face_retain, wefm_face_release, wefm_face_last_error,
  *              wefm_face_has_result, wefm_face_get_options, the topology queries (*_count, get_edge,
  *              get_loop, get_*_uses, ...) and the queries of the previous result (get_uv, get_report,
  *              get_edge_modes, get_edge_scores, get_step_history, map_*, write_obj). Every call that
  *              would change the face (set_*, add_*, clear_*, build, solve, mesh_domain, set_edge_nodes,
- *              set_progress_callback) returns WEFM_ERROR_INVALID_STATE until wefm_face_solve returns.
- *              A release of the last reference from the callback does not free the face under its
- *              solve: wefm_face_solve frees it as it returns (the caller must not use it after).
+ *              set_progress_callback) returns WEFM_ERROR_INVALID_STATE until wefm_face_solve (or
+ *              wefm_face_mesh_domain) returns. A release of the last reference from the callback does
+ *              not free the face under its solve: the call frees it as it returns (the caller must not
+ *              use it after).
  * Exceptions.  None cross this boundary. Memory exhaustion (also a thread that cannot be started for
  *              want of memory or thread slots) returns WEFM_ERROR_OUT_OF_MEMORY.
  * Invalidation. Setting a new mesh clears topology, constraints and results. Changing topology
@@ -597,7 +598,8 @@ WEFM_API wefm_status wefm_face_clear_constraints(wefm_face* face);
 
 /**
  * Progress callback: `fraction` in [0,1], `stage` one of "topology", "coefficients", "assembly",
- * "factorise", "solve", "repeated edges", "continuation", "rollout", "quality", "done", "mesh".
+ * "factorise", "solve", "repeated edges", "continuation", "rollout", "quality", "done"; and "mesh"
+ * from wefm_face_mesh_domain().
  * Return non-zero to cancel. Called on the solving thread. It may only read or cancel the face it
  * reports on (see "Re-entrancy" in the conventions): changes return WEFM_ERROR_INVALID_STATE.
  */
@@ -774,7 +776,9 @@ WEFM_API wefm_status wefm_face_set_edge_nodes(wefm_face* face, int32_t edge, int
 /** Forget every wefm_face_set_edge_nodes(): all edges are discretised at the global size again. */
 WEFM_API wefm_status wefm_face_clear_edge_nodes(wefm_face* face);
 
-/** Mesh the solved domain and map it to 3D. Needs a result (wefm_face_solve). */
+/** Mesh the solved domain and map it to 3D. Needs a result (wefm_face_solve). The face's progress
+ *  callback hears the stage "mesh" with the fraction done (0 at the start, 1 at the end) and may stop
+ *  it as it stops a solve (WEFM_ERROR_CANCELLED), under the same re-entrancy rule. */
 WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_options* options, wefm_domain_mesh** out);
 /** Add a reference to `mesh` (each needs its own wefm_domain_mesh_release()). */
 WEFM_API wefm_status wefm_domain_mesh_retain(wefm_domain_mesh* mesh);
