@@ -2,6 +2,8 @@
 
 Metadata is in pyproject.toml; this file only builds the library and tags the wheel. Where the
 library comes from (environment variables):
+  WEFM_WHEEL_LIBRARY=FILE  a libwefm.so built already (linked with RUNPATH $ORIGIN), packaged as it
+                      is: no CMake runs (the tests package the library they test);
   WEFM_BUILD_DIR=DIR  an existing CMake build folder of this tree: `cmake --build DIR --target wefm`
                       (nothing to do when it is up to date) and its capi/libwefm.so is packaged;
   otherwise           build/python-wheel is configured (Release; the library alone: no tool, tests
@@ -41,6 +43,11 @@ def run(cmd):
 
 def cmake_library():
     """Builds the `wefm` target and returns the path of the real file libwefm.so points to."""
+    given = os.environ.get("WEFM_WHEEL_LIBRARY")
+    if given:
+        if not os.path.isfile(given):
+            raise RuntimeError("WEFM_WHEEL_LIBRARY=%s: no such file" % given)
+        return os.path.realpath(given)
     build_dir = os.environ.get("WEFM_BUILD_DIR")
     if build_dir:
         build_dir = os.path.abspath(build_dir)
