@@ -85,6 +85,11 @@ def test_dask_equals_serial(inputs, client, tmp_path):
     assert len(parallel) == len(serial) == len(inputs)
     for a, b in zip(serial, parallel):
         same_result(a, b)
+    # Several faces per task: the same results, still in input order.
+    chunked = wefm.parallel.flatten_faces(inputs, client, faces_per_task=3)
+    assert len(chunked) == len(inputs)
+    for a, b in zip(serial, chunked):
+        same_result(a, b)
     # Input order is kept: each result belongs to its own input's mesh.
     cyl = wefm.parallel.load_face(inputs[4])
     assert parallel[4].triangle_uses.shape[0] == len(cyl[1])
@@ -103,5 +108,8 @@ def test_failures(inputs, client, tmp_path):
     assert isinstance(got[0], wefm.FlattenResult) and isinstance(got[2], wefm.FlattenResult)
     with pytest.raises(ValueError):
         wefm.parallel.flatten_faces(items, client, errors="ignore")
+    for bad in (0, 1.5, -2):
+        with pytest.raises(ValueError):
+            wefm.parallel.flatten_faces(items, client, faces_per_task=bad)
     with pytest.raises(wefm.WefmIOError):
         wefm.parallel.flatten_faces([str(tmp_path / "missing.obj")])

@@ -64,29 +64,37 @@ def flatten_face(item, s=1.0, strict=True, **options):
     return flatten(vertices, triangles, s=s, seams=seams, strict=strict, **options)
 
 
-def _task(item, errors, kwargs):
-    try:
-        return flatten_face(item, **kwargs)
-    except Exception as exc:  # noqa: BLE001 - returned to the caller, who asked for it
-        if errors == "return":
-            return exc
-        raise
+def _task(items, errors, kwargs):
+    out = []
+    for item in items:
+        try:
+            out.append(flatten_face(item, **kwargs))
+        except Exception as exc:  # noqa: BLE001 - returned to the caller, who asked for it
+            if errors != "return":
+                raise
+            out.append(exc)
+    return out
 
 
-def flatten_faces(inputs, client=None, errors="raise", **kwargs):
+def flatten_faces(inputs, client=None, errors="raise", faces_per_task=1, **kwargs):
     """Flattens every input (paths or array tuples, see load_face) and returns the FlattenResults in
-    input order. `client`: a distributed.Client (one task per input, run in its workers); None runs
-    them here, one after the other. Keyword arguments go to wefm.flatten() (s, strict, options).
+    input order. `client`: a distributed.Client (tasks run in its workers); None runs them here, one
+    after the other. Keyword arguments go to wefm.flatten() (s, strict, options).
     errors="raise" re-raises the first failure (a WefmError, as in a serial loop); "return" puts the
-    exception in that input's place and keeps the others."""
+    exception in that input's place and keeps the others.
+    faces_per_task: inputs flattened one after the other in one task; more than 1 pays the
+    scheduler's cost per task (milliseconds) once for several small faces."""
     if errors not in ("raise", "return"):
         raise ValueError("errors must be 'raise' or 'return', got %r" % (errors,))
+    if int(faces_per_task) != faces_per_task or faces_per_task < 1:
+        raise ValueError("faces_per_task must be a whole number >= 1, got %r" % (faces_per_task,))
     inputs = list(inputs)
+    chunks = [inputs[k:k + faces_per_task] for k in range(0, len(inputs), int(faces_per_task))]
     if client is None:
-        return [_task(item, errors, kwargs) for item in inputs]
+        return [r for chunk in chunks for r in _task(chunk, errors, kwargs)]
     # pure=False: two equal inputs are still two tasks (their results are separate objects).
-    futures = client.map(functools.partial(_task, errors=errors, kwargs=kwargs), inputs, pure=False)
-    return client.gather(futures)
+    futures = client.map(functools.partial(_task, errors=errors, kwargs=kwargs), chunks, pure=False)
+    return [r for done in client.gather(futures) for r in done]
 
 
 def _run_tool(argv):
