@@ -113,3 +113,23 @@ def test_failures(inputs, client, tmp_path):
             wefm.parallel.flatten_faces(items, client, faces_per_task=bad)
     with pytest.raises(wefm.WefmIOError):
         wefm.parallel.flatten_faces([str(tmp_path / "missing.obj")])
+
+
+@pytest.mark.skipif(not os.environ.get("WEFM_CLI_MODEL"), reason="WEFM_CLI_MODEL (a wefm tool with CAD import) not set")
+def test_models_through_the_tool(client, tmp_path):
+    model = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "cylinder.step")
+    tool = os.environ["WEFM_CLI_MODEL"]
+    args = ["-j", "1", "-q"]
+    parallel = wefm.parallel.run_models([model], tmp_path / "dask", client, tool=tool, args=args)
+    serial = wefm.parallel.run_models([model], tmp_path / "serial", tool=tool, args=args)
+    assert [r["exit_code"] for r in parallel] == [r["exit_code"] for r in serial] == [0], parallel
+    assert parallel[0]["argv"][:5] == [tool, "model", model, "-o", str(tmp_path / "dask" / "cylinder")]
+    objs = sorted(os.listdir(tmp_path / "serial" / "cylinder"))
+    objs = [name for name in objs if name.endswith(".obj")]
+    assert objs and objs == sorted(n for n in os.listdir(tmp_path / "dask" / "cylinder") if n.endswith(".obj"))
+    def data_lines(path):  # the '#' header names the output folder, which differs
+        return [line for line in path.read_bytes().splitlines() if not line.startswith(b"#")]
+
+    for name in objs:
+        got = data_lines(tmp_path / "dask" / "cylinder" / name)
+        assert got and got == data_lines(tmp_path / "serial" / "cylinder" / name), name
