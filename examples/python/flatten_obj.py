@@ -10,23 +10,7 @@ as /work/shared/data/cylinder_open.seam. Needs the wefm package importable and i
 import argparse
 import sys
 
-import numpy as np
-
 import wefm
-
-
-def read_seams(path):
-    """The vertex pairs of a seam file; a file holding only comments has none."""
-    pairs = []
-    with open(path) as f:
-        for number, line in enumerate(f, 1):
-            fields = line.split("#", 1)[0].split()
-            if not fields:
-                continue
-            if len(fields) != 2:
-                raise SystemExit("%s:%d: expected two vertex indices, got %r" % (path, number, line.strip()))
-            pairs.append((int(fields[0]), int(fields[1])))
-    return np.array(pairs, dtype=np.int64).reshape(-1, 2)
 
 
 def main(argv=None):
@@ -43,10 +27,10 @@ def main(argv=None):
     try:
         with wefm.Face(vertices, triangles) as face:
             if args.seams:
-                face.add_seams(read_seams(args.seams))
+                face.add_seams(wefm.read_seams(args.seams))
             report = face.solve(s=args.s, strict=False)
             face.write_obj(args.output)
-    except wefm.WefmError as err:
+    except (wefm.WefmError, ValueError) as err:  # ValueError: a malformed seam line
         print("wefm: %s" % err, file=sys.stderr)
         return 1
     print("wrote %s: score %.6f, angle distortion max %.6f, %d flipped triangle(s), %.3f s"

@@ -20,7 +20,7 @@ from .errors import (BufferTooSmallError, CancelledError, InternalError, Invalid
 from ._loader import LibraryNotFoundError
 from .face import Face
 from .flatten import FlattenResult, flatten
-from .mesh_io import Mesh, read_mesh
+from .mesh_io import Mesh, read_mesh, read_seams
 from .options import MeshOptions, Options
 
 

@@ -47,3 +47,19 @@ def read_mesh(path, merge_tolerance=0.0):
     """Read a mesh file -> (vertices (n, 3) float64, triangles (m, 3) int32, MeshInfo)."""
     with Mesh.read(path, merge_tolerance) as mesh:
         return mesh.vertices, mesh.triangles, mesh.info
+
+
+def read_seams(path):
+    """The (n, 2) int64 vertex pairs of a seam file: one "i j" pair of 0-based vertex indices a line,
+    '#' comments; a file holding only comments has none (an empty array). A malformed line raises
+    ValueError naming the file and the line ("in.seam:2: ...")."""
+    pairs = []
+    with open(path) as f:
+        for number, line in enumerate(f, 1):
+            fields = line.split("#", 1)[0].split()
+            if not fields:
+                continue
+            if len(fields) != 2:
+                raise ValueError("%s:%d: expected two vertex indices, got %r" % (path, number, line.strip()))
+            pairs.append((int(fields[0]), int(fields[1])))
+    return np.array(pairs, dtype=np.int64).reshape(-1, 2)

@@ -17,25 +17,8 @@ import functools
 import os
 import subprocess
 
-import numpy as np
-
 from .flatten import flatten
-from .mesh_io import read_mesh
-
-
-def read_seams(path):
-    """The (n, 2) vertex pairs of a seam file (one "i j" pair a line, '#' comments); none if it
-    holds only comments."""
-    pairs = []
-    with open(path) as f:
-        for number, line in enumerate(f, 1):
-            fields = line.split("#", 1)[0].split()
-            if not fields:
-                continue
-            if len(fields) != 2:
-                raise ValueError("%s:%d: expected two vertex indices, got %r" % (path, number, line.strip()))
-            pairs.append((int(fields[0]), int(fields[1])))
-    return np.array(pairs, dtype=np.int64).reshape(-1, 2)
+from .mesh_io import read_mesh, read_seams
 
 
 def load_face(item):
