@@ -5,8 +5,10 @@
 # CMake produces such entries itself whenever a target is installed with an INSTALL_RPATH that differs
 # from its build RPATH: it links the build tree's copy with a trailing ':' and pads it with more ':'
 # up to the install RPATH's length, so that the install step can edit the string in place. Hence:
-#   - no global install RPATH: libwefm needs none (its dependencies are system libraries), and a
-#     target without one is linked with its exact build RPATH;
+#   - no global install RPATH: libwefm's dependencies are system libraries; its own RUNPATH is
+#     $ORIGIN, linked once for the build tree and the install (capi/CMakeLists.txt), so that a copy
+#     shipped with its dependencies beside it finds them; a target without one is linked with its
+#     exact build RPATH;
 #   - the build RPATH is $ORIGIN-relative (the build tree can move; no absolute build paths);
 #   - installed programs that load libwefm get wefm_runpath(): one RUNPATH, linked once, valid in
 #     both places (BUILD_WITH_INSTALL_RPATH), so the install step never edits it.
