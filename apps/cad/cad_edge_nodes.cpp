@@ -31,6 +31,10 @@ constexpr double kWrapWidth = 2;
 constexpr double kLittleTurn = 60 * 3.14159265358979 / 180;
 // The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
 constexpr double kSmallestRadiusFraction = 8;
+// The fewest elements round a face that wraps round its seam, below the floor above: with three or
+// fewer round the period, a thin tube's mesh reaches round to its own other side (it lies on itself
+// twice, or folds away when welded and leaves its edges in no triangle).
+constexpr double kFewestAround = 4;
 
 double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -486,7 +490,11 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     const double r = curvature_radius(f);
     const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
     const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
-    sizes[k] = std::clamp(std::min(narrow, curved), h / kSmallestRadiusFraction, h);
+    const bool wraps = std::isfinite(r) && curved == r &&
+                       std::any_of(f.edges.begin(), f.edges.end(), [](const CadEdge& e) { return e.seam; });
+    const double smallest = wraps ? std::min(h / kSmallestRadiusFraction, 2 * 3.14159265358979 * r / kFewestAround)
+                                  : h / kSmallestRadiusFraction;
+    sizes[k] = std::clamp(std::min(narrow, curved), smallest, h);
   }
   return sizes;
 }

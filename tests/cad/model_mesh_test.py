@@ -28,6 +28,10 @@ from collections import Counter
 MODELS = [("gmsh_Solid_56.step", True), ("occt_MODERN_Chair_1.brep", True), ("gmsh_1385_Laufrad_1000.stp", True),
           ("gmsh_cube_filet.stp", True), ("nodeocc_kuka.stp", False), ("gmsh_problemSphere.brep", True),
           ("occt_Top.brep", True), ("nist_ctc_02_asme1_ap203.stp", True)]
+# Models that must conform (exit 0, every edge as the B-rep says) though their lambda is not yet sound:
+# nodeocc_kuka's tubes far thinner than h / 8 had three or fewer elements round their seam, and their
+# meshes lay on themselves twice (edges used four times) or folded away (edges used by no triangle).
+CONFORMING = {"nodeocc_kuka.stp"}
 
 
 def read_msh_faces(path):
@@ -73,8 +77,9 @@ def check(wefm, path, clean, tmp):
     uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for t in read_msh_triangles(msh) for i in range(3))
     assert sum(1 for n in uses.values() if n == 1) == c["open_edges"], name
     assert sum(1 for n in uses.values() if n > 2) == c["non_manifold_edges"], name
-    if clean:
+    if clean or name in CONFORMING:
         assert p.returncode == 0, f"{name}: exit {p.returncode}: {p.stderr[-2000:]}"
+    if clean:
         assert r["lambda_mesh"] >= 0.85 and r["lambda_min"] > 0.01, (name, r["lambda_mesh"], r["lambda_min"])
     print(f"{name}: exit {p.returncode}, {r['triangles']} triangles, lambda_mesh {r['lambda_mesh']:.3f}, min {r['lambda_min']:.3f}, "
           f"{len(failed)} failed faces, conformity {c['unexplained_open_edges']}/{c['unexplained_non_manifold_edges']} unexplained")
