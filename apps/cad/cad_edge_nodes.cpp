@@ -31,9 +31,11 @@ constexpr double kWrapWidth = 2;
 constexpr double kLittleTurn = 60 * 3.14159265358979 / 180;
 // The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
 constexpr double kSmallestRadiusFraction = 8;
-// The fewest elements round a face that wraps round its seam, below the floor above: with three or
-// fewer round the period, a thin tube's mesh reaches round to its own other side (it lies on itself
-// twice, or folds away when welded and leaves its edges in no triangle).
+// The fewest elements round a short face that wraps round its seam, below the floor above: with three
+// or fewer round the period, a thin tube's mesh reaches round to its own other side (it lies on itself
+// twice, or folds away when welded and leaves its edges in no triangle). Only tubes at most h long (a
+// hole through a plate, a pin): along a long thin wire isotropic elements that small multiply its
+// triangles many times over; such a wire needs a mapped strip instead.
 constexpr double kFewestAround = 4;
 
 double distance(const double* a, const double* b) {
@@ -490,7 +492,8 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     const double r = curvature_radius(f);
     const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
     const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
-    const bool wraps = std::isfinite(r) && curved == r &&
+    const double length = std::isfinite(r) && r > 0 ? area / (2 * 3.14159265358979 * r) : h;  // of a tube of radius r
+    const bool wraps = std::isfinite(r) && curved == r && length <= h &&
                        std::any_of(f.edges.begin(), f.edges.end(), [](const CadEdge& e) { return e.seam; });
     const double smallest = wraps ? std::min(h / kSmallestRadiusFraction, 2 * 3.14159265358979 * r / kFewestAround)
                                   : h / kSmallestRadiusFraction;
