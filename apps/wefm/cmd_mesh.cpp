@@ -146,7 +146,9 @@ int write_mesh_svg(const std::string& path, const MeshArrays& m, std::string& er
 
 class MeshRun {
  public:
-  explicit MeshRun(const FlattenSettings& s) : s_(s) {}
+  // The progress display covers both the solve and the meshing (the library reports the stages
+  // "solve" ... and "mesh" through one callback); `show_progress` false keeps only its stop check.
+  MeshRun(const FlattenSettings& s, bool show_progress) : s_(s), progress_(show_progress, "") {}
   MeshRun(const MeshRun&) = delete;
   MeshRun& operator=(const MeshRun&) = delete;
   int code = kExitOk;
@@ -166,6 +168,7 @@ class MeshRun {
     wefm_face* rf = nullptr;
     if (wefm_face_create(&rf) != WEFM_OK) return fail(kExitSolver, wefm_last_error());
     face_.reset(rf);
+    wefm_face_set_progress_callback(rf, &Progress::callback, &progress_);
     if (wefm_face_set_mesh_from(rf, rm) != WEFM_OK) return fail(kExitInvalid, input + ": invalid mesh: " + face_error());
     if (wefm_face_set_options(rf, &s_.options) != WEFM_OK) return fail(kExitUsage, "invalid option: " + face_error());
     TopologyFile topo;
@@ -206,6 +209,7 @@ class MeshRun {
       WatchedFace watched(&watcher_, rf);
       ss = wefm_face_solve(rf);
     }
+    progress_.finish();
     time_solve = since(t0);
     if (ss == WEFM_ERROR_CANCELLED || interrupted()) return fail(stop_exit_code(), input + ": " + stop_reason());
     int32_t has = 0;
@@ -225,14 +229,19 @@ class MeshRun {
       WatchedFace watched(&watcher_, face_.get());
       ms = wefm_face_mesh_domain(face_.get(), &o, &raw);
     }
+    progress_.finish();
+    wefm_face_set_progress_callback(face_.get(), nullptr, nullptr);
     if (ms == WEFM_ERROR_CANCELLED || interrupted()) {
       wefm_domain_mesh_release(raw);
       return fail(stop_exit_code(), "meshing: " + stop_reason());
     }
     if (ms != WEFM_OK) {
+      // The options were checked when they were read, so a refusal here is about this face: a
+      // domain the mesher cannot take (4), or a mesh over --max-elements or a failed mesher (5,
+      // as mesh-model). Never 2: the command line was fine.
       const std::string m = face_error();
-      return fail(m.find("unsupported") != std::string::npos || m.find("needs a face") != std::string::npos ? kExitInvalid : kExitUsage,
-                  "meshing failed: " + m);
+      const bool invalid = ms == WEFM_ERROR_UNSUPPORTED || ms == WEFM_ERROR_INVALID_MESH || ms == WEFM_ERROR_INVALID_TOPOLOGY;
+      return fail(invalid ? kExitInvalid : kExitSolver, "meshing failed: " + m + " [" + wefm_status_string(ms) + "]");
     }
     dm_.reset(raw);
     wefm_mesh_report_init(&report, sizeof report);
@@ -252,6 +261,7 @@ class MeshRun {
 
  private:
   const FlattenSettings& s_;
+  Progress progress_;      // outlives face_, whose callback points at it
   CancelWatcher watcher_;  // calls wefm_face_cancel on a stop request, in the solve and in the meshing
   std::unique_ptr<wefm_mesh, MeshDeleter> mesh_;
   std::unique_ptr<wefm_face, FaceDeleter> face_;
@@ -347,7 +357,7 @@ int run_mesh(const std::vector<std::string>& argv) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       return kExitIo;
     }
-  MeshRun run(s);
+  MeshRun run(s, !args.has("quiet"));
   const auto t0 = Clock::now();
   if (!run.flatten(input) || !run.mesh(mo)) {
     std::fprintf(stderr, "wefm: %s\n", run.error.c_str());

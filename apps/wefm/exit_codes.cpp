@@ -24,7 +24,8 @@ const char* exit_codes_help() {
          "  2  bad usage (unknown option, bad option value)\n"
          "  3  unreadable input or unwritable output (also an unsupported file format)\n"
          "  4  invalid mesh or topology (seams, --topology file, --edge-mode-of that does not fit)\n"
-         "  5  solver failure, including not converged (outputs are still written when a result exists)\n"
+         "  5  solver or meshing failure, including not converged and a --max-elements refusal (outputs are\n"
+         "     still written when a result exists)\n"
          "  6  cancelled (Ctrl-C or SIGTERM; a second one ends the process at once)\n"
          "  7  time limit reached (--time-limit, or the CAD import's own limit)\n"
          "Outputs are replaced whole or not at all: a failed or stopped run leaves the previous file.\n";

@@ -62,15 +62,22 @@ WEFM_API wefm_status wefm_face_mesh_domain(wefm_face* face, const wefm_mesh_opti
   WEFM_REQUIRE(options, "wefm_face_mesh_domain");
   WEFM_REQUIRE(out, "wefm_face_mesh_domain");
   *out = nullptr;
-  return on_face(face, Access::change, "wefm_face_mesh_domain", [&] {
+  const wefm_status status = on_face(face, Access::change, "wefm_face_mesh_domain", [&] {
     face->cancel.store(false);
     wefm::capi::check_struct_size(options->struct_size, "wefm_mesh_options");
     const wefm_mesh_options o = wefm::capi::read_versioned(options, default_mesh_options());
     const wefm::FlattenResult& r = face->face.result();
     auto dm = std::make_unique<wefm_domain_mesh>();
-    dm->mesh = wefm::meshing::mesh_domain(face->face.mesh(), face->face.topology(), r.uv, convert(o), face->face.edge_nodes(), &face->cancel);
+    wefm::meshing::MeshControl control;
+    control.cancel = &face->cancel;
+    if (const wefm::ProgressFn progress = wefm::capi::progress_of(face))
+      control.progress = [progress](double f) { return progress(f, "mesh"); };
+    const wefm::capi::BusyFace busy(face);
+    dm->mesh = wefm::meshing::mesh_domain(face->face.mesh(), face->face.topology(), r.uv, convert(o), face->face.edge_nodes(), control);
     *out = dm.release();
   });
+  wefm::capi::free_if_released(face);
+  return status;
 }
 
 WEFM_API wefm_status wefm_domain_mesh_retain(wefm_domain_mesh* mesh) {

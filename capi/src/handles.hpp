@@ -21,8 +21,9 @@ struct wefm_face {
   std::atomic<bool> cancel{false};
   wefm_progress_fn progress = nullptr;
   void* progress_user = nullptr;
-  // Set while wefm_face_solve runs: its progress callback may call back into this face, which it
-  // may then only read (wefm.h, "Re-entrancy"); a release of the last reference waits for the end.
+  // Set while wefm_face_solve or wefm_face_mesh_domain runs: its progress callback may call back
+  // into this face, which it may then only read (wefm.h, "Re-entrancy"); a release of the last
+  // reference waits for the end.
   bool solving = false;
 };
 
@@ -84,6 +85,38 @@ template <class F>
 wefm_status on_face(wefm_face* face, Access access, const char* function, F&& body) noexcept {
   if (access == Access::change && face->solving) return refuse_while_solving(face, function);
   return guarded(&face->last_error, std::forward<F>(body));
+}
+
+// The face's C progress callback as the core's (empty when it has none): a non-zero return asks to
+// stop. A C++ caller could still throw through it: that is a stop too, never an unwinding through
+// the solver's or the mesher's state.
+inline wefm::ProgressFn progress_of(wefm_face* face) {
+  if (!face->progress) return {};
+  return [face](double f, const char* stage) {
+    try {
+      return face->progress(face->progress_user, f, stage) == 0;
+    } catch (...) {
+      return false;
+    }
+  };
+}
+
+// Marks a face busy for a solve or a meshing (the callback's re-entrancy rule), however it ends.
+class BusyFace {
+ public:
+  explicit BusyFace(wefm_face* face) : face_(face) { face_->solving = true; }
+  ~BusyFace() { face_->solving = false; }
+  BusyFace(const BusyFace&) = delete;
+  BusyFace& operator=(const BusyFace&) = delete;
+
+ private:
+  wefm_face* face_;
+};
+
+// After a solve or a meshing: the callback released the last reference, so the face outlived the
+// call only to finish it and goes now.
+inline void free_if_released(wefm_face* face) {
+  if (!face->solving && face->refs.load() == 0) delete face;
 }
 
 // NULL handle: thread-local message, WEFM_ERROR_NULL_ARGUMENT.

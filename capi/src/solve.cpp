@@ -52,28 +52,10 @@ WEFM_API wefm_status wefm_face_solve(wefm_face* face) {
   WEFM_REQUIRE(face, "wefm_face_solve");
   const wefm_status status = on_face(face, Access::change, "wefm_face_solve", [&] {
     face->cancel.store(false);
-    face->solving = true;
-    // Cleared however the solve ends, so the face is never left refusing changes.
-    struct Done {
-      wefm_face* f;
-      ~Done() { f->solving = false; }
-    } done{face};
-    wefm::ProgressFn progress;
-    if (face->progress) {
-      progress = [face](double f, const char* stage) {
-        // A throwing callback cannot exist in C, but a longjmp-free C++ caller could still throw:
-        // treat that as a cancel rather than unwinding through the solver's state.
-        try {
-          return face->progress(face->progress_user, f, stage) == 0;
-        } catch (...) {
-          return false;
-        }
-      };
-    }
-    face->face.solve(progress, &face->cancel);
+    const wefm::capi::BusyFace busy(face);
+    face->face.solve(wefm::capi::progress_of(face), &face->cancel);
   });
-  // The callback released the last reference: the face outlived its solve and goes now.
-  if (!face->solving && face->refs.load() == 0) delete face;
+  wefm::capi::free_if_released(face);
   return status;
 }
 

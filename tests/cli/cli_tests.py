@@ -567,6 +567,14 @@ def case_mesh(tmp):
     psrc, pout, prep, psvg = (os.path.join(tmp, n) for n in ("patch.obj", "patch_mesh.obj", "patch.json", "patch.svg"))
     meshes.write_obj(psrc, PV, PT)
     run("mesh", psrc, "--size", 0.05, "-o", pout, "--report", prep, "--svg", psvg, "-q", expect=0)
+    # Without -q the solve and the meshing both show progress on a non-terminal stderr.
+    shown = run("mesh", psrc, "--size", 0.05, "-o", os.path.join(tmp, "shown.obj"), expect=0)
+    stages = {l.split()[1] for l in shown.stderr.splitlines() if l.startswith("progress: ")}
+    check("mesh" in stages and len(stages) >= 2, f"wefm mesh progress stages {stages}:\n{shown.stderr}")
+    # A mesh over --max-elements is a meshing failure (5), not bad usage, and writes nothing.
+    capped = os.path.join(tmp, "capped.obj")
+    p = run("mesh", psrc, "--size", 0.05, "--max-elements", 10, "-o", capped, expect=5)
+    check("max_elements" in p.stderr and not os.path.exists(capped), f"capped mesh: {p.stderr}")
     m = json.load(open(prep))["mesh"]
     _, F = read_faces(pout)
     check(m["nodes_per_element"] == 3 and m["elements"] == len(F) and all(len(f) == 3 for f in F), f"free mesh {m}")

@@ -1,5 +1,7 @@
 // Free meshing (METHOD §9): constrained Delaunay + refinement + improvement judged in 3D.
+#include <algorithm>
 #include <map>
+#include <vector>
 
 #include "mesh_faces.hpp"
 
@@ -108,9 +110,38 @@ TEST_CASE("a raised cancel flag stops free meshing with Error(cancelled)") {
   o.size = 0.01;
   const std::atomic<bool> cancel{true};
   try {
-    (void)meshing::mesh_domain(f.mesh(), f.topo(), f.uv(), o, {}, &cancel);
+    (void)meshing::mesh_domain(f.mesh(), f.topo(), f.uv(), o, {}, meshing::MeshControl{&cancel, {}});
     FAIL("not cancelled");
   } catch (const Error& e) {
     CHECK(e.code() == Errc::cancelled);
+  }
+}
+
+TEST_CASE("meshing reports its progress from 0 to 1, and a progress callback returning false stops it") {
+  const auto f = test::solved(test::unit_square(4));
+  meshing::MeshOptions o;
+  o.size = 0.02;  // a few thousand triangles: several insertion reports
+  std::vector<double> seen;
+  meshing::MeshControl control;
+  control.progress = [&](double x) {
+    seen.push_back(x);
+    return true;
+  };
+  const auto dm = meshing::mesh_domain(f.mesh(), f.topo(), f.uv(), o, {}, control);
+  REQUIRE(seen.size() >= 5);
+  CHECK(seen.front() == 0.0);
+  CHECK(seen.back() == 1.0);
+  CHECK(std::is_sorted(seen.begin(), seen.end()));
+  CHECK(std::count_if(seen.begin(), seen.end(), [](double x) { return x > 0.1 && x < 0.8 + 1e-12; }) >= 2);
+  CHECK(dm.elements.size() / 3 > 1000);
+
+  int calls = 0;
+  control.progress = [&](double) { return ++calls < 3; };
+  try {
+    (void)meshing::mesh_domain(f.mesh(), f.topo(), f.uv(), o, {}, control);
+    FAIL("not stopped");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::cancelled);
+    CHECK(calls == 3);
   }
 }

@@ -14,7 +14,7 @@
 namespace wefm::meshing {
 
 DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o, const EdgeNodes& given,
-                       const std::atomic<bool>* cancel) {
+                       const MeshControl& control) {
   if (!(o.size > 0) || !std::isfinite(o.size)) fail(Errc::invalid_argument, "mesh size must be a positive number (got " + std::to_string(o.size) + ")");
   if (o.type != MeshType::Free && o.type != MeshType::Transfinite) fail(Errc::invalid_argument, "unknown mesh type " + std::to_string(static_cast<int>(o.type)));
   if (!(o.min_angle_deg >= 0 && o.min_angle_deg <= 34)) fail(Errc::invalid_argument, "min_angle_deg must lie in [0, 34] for refinement to terminate (got " + std::to_string(o.min_angle_deg) + ")");
@@ -33,6 +33,7 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     fail(Errc::invalid_state, "the domain's boundary intersects itself (" + std::to_string(crossings) +
                                   " crossings): solve with other options or seams before meshing");
 
+  control.check(0.0);
   DomainMesh out;
   const SurfaceMap map(mesh, topo, uv);
   if (o.type == MeshType::Transfinite) {
@@ -41,7 +42,9 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     auto t0 = std::chrono::steady_clock::now();
     const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);
     out.report.time_boundary = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    free_mesh(loops, map, o, estimate / 2.5, out, cancel);
+    control.check(0.1);
+    free_mesh(loops, map, o, estimate / 2.5, out, control);
+    control.check(0.95);
     t0 = std::chrono::steady_clock::now();
     out.normal.resize(out.uv.size());
     for (size_t k = 0; k < out.uv.size(); ++k) {
@@ -59,6 +62,7 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
       fail(Errc::internal, "domain mesh node " + std::to_string(k) + " has a non-finite position (UV " + message_number(out.uv[k].x()) + ", " +
                                message_number(out.uv[k].y()) + ")");
   measure_quality(out);
+  control.check(1.0);
   return out;
 }
 

@@ -80,10 +80,7 @@ void boundary_nodes(const std::vector<LoopNodes>& loops, std::vector<P2>& pts, s
 }  // namespace
 
 void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, double expected_elements,
-               DomainMesh& out, const std::atomic<bool>* cancel) {
-  auto check_cancel = [&] {
-    if (cancel && cancel->load()) fail(Errc::cancelled, "meshing cancelled");
-  };
+               DomainMesh& out, const MeshControl& control) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<P2> pts;
   std::vector<std::array<Index, 2>> segs;
@@ -96,7 +93,8 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   std::int64_t inserted = 0;
   auto tick = [&] {
     // Throwing here leaves the triangulation consistent; it is discarded with the exception.
-    if ((++inserted & 255) == 0) check_cancel();
+    // Insertions as the share of what the face's area asks for (refinement may run past it).
+    if ((++inserted & 255) == 0) control.check(0.1 + 0.7 * std::min(1.0, static_cast<double>(inserted) / std::max(1.0, expected_elements / 2)));
   };
   // A triangulation has about twice as many triangles as nodes: stop refining near the cap. Without
   // one, refinement stops far past what the face's area and its boundary can need: a cascade of
@@ -128,7 +126,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   auto tris = tr.triangles();
   out.report.time_mesh = seconds_since(t0);
 
-  check_cancel();
+  control.check(0.8);
   t0 = std::chrono::steady_clock::now();
   improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, o.smoothing_iterations, map);
   out.report.time_smooth = seconds_since(t0);
