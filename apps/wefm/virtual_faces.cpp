@@ -1,0 +1,404 @@
+#include "virtual_faces.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <set>
+#include <unordered_map>
+
+#include "cad_edge_nodes.hpp"
+#include "cad_wefm.hpp"
+#include "owned.hpp"
+
+namespace wefm_cli {
+
+namespace {
+
+// A face narrower than h / this (2 area / perimeter) is merged. The local size of a narrow face
+// (local_face_sizes) is 2.5 times its width, floored at h / 8: below h / 20 the floor wins and the
+// triangles across it are slivers; above, the face gets triangles of its own width.
+constexpr double kNarrowRatio = 20;
+// Never merged across an edge where the facet normals of the two faces turn by more than this:
+// a 45-degree chamfer merges with either face, the right-angle edge of a box does not. A triangle
+// spanning a strip of width w at such a kink leaves the surface by at most w sin(25 deg) < h / 40.
+constexpr double kSharpDegrees = 50;
+constexpr double kPi = 3.14159265358979323846;
+
+using Normal = std::array<double, 3>;
+
+const double* at(const wefm_cad::CadFace& f, int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; }
+
+double distance(const double* a, const double* b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+Normal facet_normal(const wefm_cad::CadFace& f, size_t t) {
+  const double *a = at(f, f.triangles[3 * t]), *b = at(f, f.triangles[3 * t + 1]), *c = at(f, f.triangles[3 * t + 2]);
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  Normal n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& x : n) x = len > 0 ? x / len : 0;
+  return n;
+}
+
+uint64_t pair_key(int32_t a, int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
+
+// Facet edge (unordered vertex pair) -> a facet having it.
+std::unordered_map<uint64_t, size_t> facet_of_edge(const wefm_cad::CadFace& f) {
+  std::unordered_map<uint64_t, size_t> out;
+  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
+    for (size_t c = 0; c < 3; ++c) out.emplace(pair_key(f.triangles[3 * t + c], f.triangles[3 * t + (c + 1) % 3]), t);
+  return out;
+}
+
+// The largest angle, in degrees, between the facet normals of a and b along the chain of edge
+// index ea of a and eb of b (the same model edge); 180 when a segment has no facet on one side.
+double dihedral(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& b, size_t eb, bool reversed) {
+  const auto fa = facet_of_edge(a), fb = facet_of_edge(b);
+  const auto& ca = a.edges[ea].vertices;
+  const auto& cb = b.edges[eb].vertices;
+  const size_t n = ca.size();
+  double worst = 0;
+  for (size_t k = 0; k + 1 < n; ++k) {
+    const size_t kb = reversed ? n - 1 - k : k, kb1 = reversed ? n - 2 - k : k + 1;
+    const auto ia = fa.find(pair_key(ca[k], ca[k + 1])), ib = fb.find(pair_key(cb[kb], cb[kb1]));
+    if (ia == fa.end() || ib == fb.end()) return 180;
+    const Normal na = facet_normal(a, ia->second), nb = facet_normal(b, ib->second);
+    const double c = std::clamp(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2], -1.0, 1.0);
+    worst = std::max(worst, std::acos(c) * 180 / kPi);
+  }
+  return worst;
+}
+
+// Whether b's chain of edge eb runs along a's chain of edge ea (same points within tol), forwards
+// (reversed = false) or backwards.
+bool same_chain(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& b, size_t eb, double tol, bool& reversed) {
+  const auto& ca = a.edges[ea].vertices;
+  const auto& cb = b.edges[eb].vertices;
+  if (ca.size() != cb.size() || ca.size() < 2) return false;
+  for (bool rev : {false, true}) {
+    bool ok = true;
+    for (size_t k = 0; k < ca.size() && ok; ++k) ok = distance(at(a, ca[k]), at(b, cb[rev ? ca.size() - 1 - k : k])) <= tol;
+    if (ok) {
+      reversed = rev;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Where the uses of the shared edges sit: the one loop holding all of them, rotated so they come
+// last, as one run. False when they are spread over loops, not contiguous or used more than once.
+bool shared_run(const wefm_cad::CadFace& f, const std::set<size_t>& shared, int& loop, std::vector<wefm_cad::CadEdgeUse>& rest,
+                std::vector<wefm_cad::CadEdgeUse>& run) {
+  loop = -1;
+  for (size_t l = 0; l < f.loops.size(); ++l)
+    for (const auto& u : f.loops[l])
+      if (shared.count(static_cast<size_t>(u.edge))) {
+        if (loop >= 0 && loop != static_cast<int>(l)) return false;
+        loop = static_cast<int>(l);
+      }
+  if (loop < 0) return false;
+  const auto& uses = f.loops[static_cast<size_t>(loop)];
+  const size_t n = uses.size();
+  auto in = [&](size_t k) { return shared.count(static_cast<size_t>(uses[k % n].edge)) > 0; };
+  size_t start = 0;  // first use of the run: a shared use after an unshared one
+  for (size_t k = 0; k < n; ++k)
+    if (in(k) && !in(k + n - 1)) start = k;
+  rest.clear(), run.clear();
+  for (size_t k = 0; k < n; ++k) {
+    const auto& u = uses[(start + k) % n];
+    (in(start + k) ? run : rest).push_back(u);
+  }
+  // Contiguous: the run is the first run.size() uses from start.
+  for (size_t k = 0; k < run.size(); ++k)
+    if (!in(start + k)) return false;
+  return run.size() == shared.size();
+}
+
+// Whether every facet edge is used at most twice, once each way (one consistent orientation).
+bool manifold(const std::vector<int32_t>& tris) {
+  std::set<std::pair<int32_t, int32_t>> directed;
+  for (size_t t = 0; t + 2 < tris.size(); t += 3)
+    for (size_t c = 0; c < 3; ++c)
+      if (!directed.insert({tris[t + c], tris[t + (c + 1) % 3]}).second) return false;
+  return true;
+}
+
+// Merges face b into face a across the edges they share (`shared`: pairs of edge index in a, in b).
+// The result keeps a's index and surface type. False + why when the result would not be one valid
+// face (see the checks).
+bool merge_pair(const wefm_cad::CadFace& a, const wefm_cad::CadFace& b, const std::vector<std::pair<size_t, size_t>>& shared,
+                double tol, wefm_cad::CadFace& out, std::string& why) {
+  std::vector<int32_t> vmap(b.xyz.size() / 3, -1);
+  std::set<size_t> sa, sb;
+  std::map<size_t, size_t> a_of_b;
+  for (const auto& [ea, eb] : shared) {
+    bool reversed = false;
+    if (a.edges[ea].seam || b.edges[eb].seam || !same_chain(a, ea, b, eb, tol, reversed)) return why = "shared edge chains differ", false;
+    const auto& ca = a.edges[ea].vertices;
+    const auto& cb = b.edges[eb].vertices;
+    for (size_t k = 0; k < ca.size(); ++k) vmap[static_cast<size_t>(cb[reversed ? ca.size() - 1 - k : k])] = ca[k];
+    sa.insert(ea), sb.insert(eb), a_of_b[eb] = ea;
+  }
+  int la = -1, lb = -1;
+  std::vector<wefm_cad::CadEdgeUse> rest_a, run_a, rest_b, run_b;
+  if (!shared_run(a, sa, la, rest_a, run_a) || !shared_run(b, sb, lb, rest_b, run_b))
+    return why = "shared edges not one run of one loop", false;
+  // The face on the left of both: b walks the run backwards, each edge the other way.
+  for (size_t k = 0; k < run_a.size(); ++k) {
+    const auto& ua = run_a[k];
+    const auto& ub = run_b[run_b.size() - 1 - k];
+    bool reversed = false;
+    same_chain(a, static_cast<size_t>(ua.edge), b, static_cast<size_t>(ub.edge), tol, reversed);
+    if (a_of_b[static_cast<size_t>(ub.edge)] != static_cast<size_t>(ua.edge) || (ua.reversed != ub.reversed) == reversed)
+      return why = "orientations differ", false;
+  }
+  const bool a_outer = la == a.outer_loop, b_outer = lb == b.outer_loop;
+  if (!a_outer && !b_outer) return why = "shared edges on inner loops of both", false;
+  if (a_outer && b_outer && rest_a.empty() && rest_b.empty()) return why = "the merge would have no boundary", false;
+  out = wefm_cad::CadFace{};
+  out.index = a.index;
+  out.surface_type = a.surface_type;
+  out.xyz = a.xyz;
+  for (size_t v = 0; v < vmap.size(); ++v)
+    if (vmap[v] < 0) {
+      vmap[v] = static_cast<int32_t>(out.xyz.size() / 3);
+      out.xyz.insert(out.xyz.end(), at(b, static_cast<int32_t>(v)), at(b, static_cast<int32_t>(v)) + 3);
+    }
+  out.triangles = a.triangles;
+  for (int32_t v : b.triangles) out.triangles.push_back(vmap[static_cast<size_t>(v)]);
+  if (!manifold(out.triangles)) return why = "the merged facets are not a manifold", false;
+  std::vector<int32_t> edge_a(a.edges.size(), -1), edge_b(b.edges.size(), -1);
+  std::set<long long> ids;
+  for (size_t e = 0; e < a.edges.size(); ++e)
+    if (!sa.count(e)) edge_a[e] = static_cast<int32_t>(out.edges.size()), out.edges.push_back(a.edges[e]), ids.insert(a.edges[e].id);
+  for (size_t e = 0; e < b.edges.size(); ++e) {
+    if (sb.count(e)) continue;
+    if (ids.count(b.edges[e].id)) return why = "another edge is on both faces", false;
+    wefm_cad::CadEdge copy = b.edges[e];
+    for (int32_t& v : copy.vertices) v = vmap[static_cast<size_t>(v)];
+    edge_b[e] = static_cast<int32_t>(out.edges.size()), out.edges.push_back(copy);
+  }
+  auto remap = [](std::vector<wefm_cad::CadEdgeUse> uses, const std::vector<int32_t>& m) {
+    for (auto& u : uses) u.edge = m[static_cast<size_t>(u.edge)];
+    return uses;
+  };
+  for (size_t l = 0; l < a.loops.size(); ++l) {
+    if (static_cast<int>(l) != la) {
+      if (static_cast<int>(l) == a.outer_loop) out.outer_loop = static_cast<int>(out.loops.size());
+      out.loops.push_back(remap(a.loops[l], edge_a));
+      continue;
+    }
+    auto spliced = remap(rest_a, edge_a);
+    for (const auto& u : remap(rest_b, edge_b)) spliced.push_back(u);
+    if (spliced.empty()) continue;  // b filled a hole of a exactly
+    if (a_outer && b_outer) out.outer_loop = static_cast<int>(out.loops.size());
+    out.loops.push_back(spliced);
+  }
+  for (size_t l = 0; l < b.loops.size(); ++l) {
+    if (static_cast<int>(l) == lb) continue;
+    if (a_outer && static_cast<int>(l) == b.outer_loop) out.outer_loop = static_cast<int>(out.loops.size());
+    out.loops.push_back(remap(b.loops[l], edge_b));
+  }
+  out.dropped_triangles = a.dropped_triangles + b.dropped_triangles;
+  out.triangulation_kept = a.triangulation_kept && b.triangulation_kept;
+  // The library's own check of the topology (loops close, edges are facet edges, one outer loop).
+  wefm_face* raw = nullptr;
+  if (wefm_face_create(&raw) != WEFM_OK) return why = "out of memory", false;
+  std::unique_ptr<wefm_face, FaceDeleter> handle(raw);
+  std::string error;
+  if (wefm_cad::set_face_from_cad(raw, out, error) != WEFM_OK || wefm_face_build(raw) != WEFM_OK)
+    return why = "topology: " + (error.empty() ? std::string(wefm_face_last_error(raw)) : error), false;
+  return true;
+}
+
+// Per model edge id: the faces (by position) whose loops use it, once per use.
+std::map<long long, std::vector<size_t>> edge_users(const std::vector<wefm_cad::CadFace>& faces, const std::vector<char>& alive) {
+  std::map<long long, std::vector<size_t>> out;
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (alive[i])
+      for (const auto& loop : faces[i].loops)
+        for (const auto& u : loop) out[faces[i].edges[static_cast<size_t>(u.edge)].id].push_back(i);
+  return out;
+}
+
+struct Candidate {
+  size_t neighbour;
+  std::vector<std::pair<size_t, size_t>> shared;  // edge index in the neighbour, in the narrow face
+  std::vector<long long> ids;
+  double dihedral;
+};
+
+// The neighbours of face i it could merge with: across edges used once by i and once by the
+// neighbour and by no other face, smoothest first; sharp ones left out.
+std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, size_t i,
+                                  const std::map<long long, std::vector<size_t>>& users, double tol) {
+  std::map<size_t, Candidate> by_face;
+  const wefm_cad::CadFace& f = faces[i];
+  for (size_t e = 0; e < f.edges.size(); ++e) {
+    const auto it = users.find(f.edges[e].id);
+    if (it == users.end() || it->second.size() != 2) continue;
+    const size_t j = it->second[0] == i ? it->second[1] : it->second[0];
+    if (j == i) continue;
+    const wefm_cad::CadFace& g = faces[j];
+    for (size_t d = 0; d < g.edges.size(); ++d) {
+      if (g.edges[d].id != f.edges[e].id) continue;
+      bool reversed = false;
+      if (!same_chain(g, d, f, e, tol, reversed)) continue;
+      Candidate& c = by_face.emplace(j, Candidate{j, {}, {}, 0}).first->second;
+      c.shared.push_back({d, e});
+      c.ids.push_back(f.edges[e].id);
+      c.dihedral = std::max(c.dihedral, dihedral(g, d, f, e, reversed));
+    }
+  }
+  std::vector<Candidate> out;
+  for (auto& [j, c] : by_face)
+    if (c.dihedral <= kSharpDegrees) out.push_back(std::move(c));
+  std::sort(out.begin(), out.end(), [](const Candidate& x, const Candidate& y) { return x.dihedral < y.dihedral; });
+  return out;
+}
+
+}  // namespace
+
+VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vector<double>& face_sizes) {
+  VirtualTopology vt;
+  std::vector<wefm_cad::CadFace>& faces = model.faces;
+  const double tol = 1e-7 * model.bbox_diagonal;
+  std::vector<char> alive(faces.size(), 1);
+  std::vector<std::vector<int>> facet_face(faces.size());
+  std::vector<std::pair<double, size_t>> narrow;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    if (!faces[i].error.empty()) continue;
+    const double w = wefm_cad::face_width(faces[i]);
+    if (w > 0 && w < h / kNarrowRatio) narrow.push_back({w, i});
+  }
+  std::sort(narrow.begin(), narrow.end());
+  auto users = edge_users(faces, alive);
+  for (const auto& [w0, i] : narrow) {
+    if (!alive[i]) continue;
+    const double w = wefm_cad::face_width(faces[i]);  // it may have absorbed a narrower one
+    if (!(w < h / kNarrowRatio)) continue;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "narrow: width %.3g below h / %g", w, kNarrowRatio);
+    std::string why = "no neighbour across an edge turning by at most 50 degrees";
+    bool merged_any = false;
+    for (const Candidate& c : neighbours(faces, i, users, tol)) {
+      wefm_cad::CadFace merged;
+      if (!faces[c.neighbour].error.empty() || !merge_pair(faces[c.neighbour], faces[i], c.shared, tol, merged, why)) continue;
+      auto& ff = facet_face[c.neighbour];
+      if (ff.empty()) ff.assign(faces[c.neighbour].triangles.size() / 3, faces[c.neighbour].index);
+      if (facet_face[i].empty()) facet_face[i].assign(faces[i].triangles.size() / 3, faces[i].index);
+      ff.insert(ff.end(), facet_face[i].begin(), facet_face[i].end());
+      vt.merges.push_back({faces[i].index, faces[c.neighbour].index, w, c.dihedral, c.ids, reason});
+      for (const auto& e : faces[i].edges) {
+        auto& list = users[e.id];
+        std::replace(list.begin(), list.end(), i, c.neighbour);
+      }
+      for (long long id : c.ids) users.erase(id);
+      faces[c.neighbour] = std::move(merged);
+      alive[i] = 0;
+      merged_any = true;
+      break;
+    }
+    if (!merged_any) vt.merges.push_back({faces[i].index, 0, w, 0, {}, std::string(reason) + "; kept: " + why});
+  }
+  if (std::none_of(vt.merges.begin(), vt.merges.end(), [](const FaceMerge& m) { return m.into; })) return vt;
+  // Faces absorbed earlier into a face that was absorbed later name the final one.
+  std::map<int, int> final_of;
+  for (auto it = vt.merges.rbegin(); it != vt.merges.rend(); ++it) {
+    if (!it->into) continue;
+    const auto f = final_of.find(it->into);
+    final_of[it->face] = f == final_of.end() ? it->into : f->second;
+  }
+  for (FaceMerge& m : vt.merges)
+    if (m.into) m.into = final_of[m.face];
+  std::vector<wefm_cad::CadFace> kept;
+  std::vector<double> sizes;
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (alive[i]) {
+      kept.push_back(std::move(faces[i]));
+      vt.facet_face.push_back(std::move(facet_face[i]));
+      if (i < face_sizes.size()) sizes.push_back(face_sizes[i]);
+    }
+  faces = std::move(kept);
+  face_sizes = std::move(sizes);
+  return vt;
+}
+
+std::vector<FacePart> split_by_face(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
+                                    const std::vector<double>& xyz, const std::vector<int32_t>& tris, double h) {
+  if (virtual_face >= vt.facet_face.size() || vt.facet_face[virtual_face].empty()) return {{face.index, xyz, tris}};
+  const std::vector<int>& source = vt.facet_face[virtual_face];
+  // The absorbed faces' facets, with their bounding box grown by h / 2: a triangle's centroid over
+  // one of them (its projection inside, at most h / 2 off) goes to that face, any other to `face`.
+  std::map<int, std::vector<size_t>> facets;
+  for (size_t t = 0; t < source.size(); ++t)
+    if (source[t] != face.index) facets[source[t]].push_back(t);
+  const double reach = 0.5 * h;
+  auto over = [&](const double* p, size_t t) {
+    const double *a = at(face, face.triangles[3 * t]), *b = at(face, face.triangles[3 * t + 1]), *c = at(face, face.triangles[3 * t + 2]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    const double wu = w[0] * u[0] + w[1] * u[1] + w[2] * u[2], wv = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
+    const double det = uu * vv - uv * uv;
+    if (!(det > 0)) return false;
+    const double s = (vv * wu - uv * wv) / det, r = (uu * wv - uv * wu) / det;
+    if (s < -1e-9 || r < -1e-9 || s + r > 1 + 1e-9) return false;
+    const double q[3] = {a[0] + s * u[0] + r * v[0] - p[0], a[1] + s * u[1] + r * v[1] - p[1], a[2] + s * u[2] + r * v[2] - p[2]};
+    return std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) <= reach;
+  };
+  std::map<int, std::vector<int32_t>> groups;
+  for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+    double c[3];
+    for (int k = 0; k < 3; ++k)
+      c[k] = (xyz[3 * static_cast<size_t>(tris[t]) + static_cast<size_t>(k)] + xyz[3 * static_cast<size_t>(tris[t + 1]) + static_cast<size_t>(k)] +
+              xyz[3 * static_cast<size_t>(tris[t + 2]) + static_cast<size_t>(k)]) / 3;
+    int tag = face.index;
+    for (const auto& [g, list] : facets) {
+      if (std::any_of(list.begin(), list.end(), [&](size_t f) { return over(c, f); })) {
+        tag = g;
+        break;
+      }
+    }
+    groups[tag].insert(groups[tag].end(), tris.begin() + static_cast<std::ptrdiff_t>(t), tris.begin() + static_cast<std::ptrdiff_t>(t + 3));
+  }
+  // Each part with its own nodes: ModelMesh writes every node it is given.
+  std::vector<FacePart> out;
+  for (auto& [tag, list] : groups) {
+    FacePart part{tag, {}, {}};
+    std::unordered_map<int32_t, int32_t> local;
+    for (int32_t v : list) {
+      const auto [it, fresh] = local.emplace(v, static_cast<int32_t>(part.xyz.size() / 3));
+      if (fresh) part.xyz.insert(part.xyz.end(), &xyz[3 * static_cast<size_t>(v)], &xyz[3 * static_cast<size_t>(v)] + 3);
+      part.tris.push_back(it->second);
+    }
+    out.push_back(std::move(part));
+  }
+  return out;
+}
+
+nlohmann::ordered_json merges_json(const VirtualTopology& vt) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const FaceMerge& m : vt.merges)
+    out.push_back({{"face", m.face}, {"merged_into", m.into ? nlohmann::ordered_json(m.into) : nullptr}, {"reason", m.reason}, {"width", m.width},
+                   {"dihedral_degrees", m.dihedral}, {"shared_edges", m.shared_edges}});
+  return out;
+}
+
+std::vector<int> merged_into(const VirtualTopology& vt, int face) {
+  std::vector<int> out;
+  for (const FaceMerge& m : vt.merges)
+    if (m.into == face) out.push_back(m.face);
+  return out;
+}
+
+}  // namespace wefm_cli
