@@ -26,6 +26,10 @@ constexpr double kNarrowRatio = 20;
 // spanning a strip of width w at such a kink leaves the surface by at most w sin(25 deg) < h / 40.
 constexpr double kSharpDegrees = 50;
 constexpr double kPi = 3.14159265358979323846;
+// A face with a corner sharper than this (degrees, inside the face) is merged with the neighbour
+// across one of the corner's edges: a triangle in a corner of angle t has Lo lambda at most
+// 2 sqrt(3) sin t / (2 + 4 sin^2(t / 2)), 0.30 at 10.5 degrees, whatever the sizes.
+constexpr double kSharpCornerDegrees = 12;
 
 using Normal = std::array<double, 3>;
 
@@ -219,6 +223,48 @@ bool merge_pair(const wefm_cad::CadFace& a, const wefm_cad::CadFace& b, const st
   return true;
 }
 
+// The face's corners sharper than kSharpCornerDegrees: (angle in degrees, the ids of the two model
+// edges meeting there). The angle is the turn of the loop seen along the facets' normal at the
+// corner, so a corner of 350 degrees (a notch) is not taken for one of 10.
+std::vector<std::pair<double, std::array<long long, 2>>> sharp_corners(const wefm_cad::CadFace& f) {
+  std::vector<std::pair<double, std::array<long long, 2>>> out;
+  std::map<int32_t, Normal> normal;  // at the corner vertices: sum of the facet normals around
+  auto chain = [&](const wefm_cad::CadEdgeUse& u) {
+    std::vector<int32_t> c = f.edges[static_cast<size_t>(u.edge)].vertices;
+    if (u.reversed) std::reverse(c.begin(), c.end());
+    return c;
+  };
+  for (const auto& loop : f.loops)
+    for (const auto& u : loop) normal[chain(u).front()] = {0, 0, 0};
+  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
+    for (size_t c = 0; c < 3; ++c) {
+      const auto it = normal.find(f.triangles[3 * t + c]);
+      if (it == normal.end()) continue;
+      const Normal n = facet_normal(f, t);
+      for (size_t k = 0; k < 3; ++k) it->second[k] += n[k];
+    }
+  for (const auto& loop : f.loops)
+    for (size_t k = 0; k < loop.size(); ++k) {
+      // A pole (a degenerate edge) between two edges is a corner of the two: a patch narrowing to
+      // a point.
+      size_t next = (k + 1) % loop.size();
+      if (f.edges[static_cast<size_t>(loop[next].edge)].vertices.size() < 2) next = (next + 1) % loop.size();
+      const auto in = chain(loop[k]), out_chain = chain(loop[next]);
+      if (in.size() < 2 || out_chain.size() < 2 || in.back() != out_chain.front()) continue;
+      const double *p = at(f, in[in.size() - 2]), *q = at(f, in.back()), *r = at(f, out_chain[1]);
+      const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, b[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
+      const Normal& n = normal[in.back()];
+      const double cross = (a[1] * b[2] - a[2] * b[1]) * n[0] + (a[2] * b[0] - a[0] * b[2]) * n[1] + (a[0] * b[1] - a[1] * b[0]) * n[2];
+      const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(nn > 0)) continue;
+      const double angle = 180 - std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180 / kPi;
+      if (angle < kSharpCornerDegrees)
+        out.push_back({angle, {f.edges[static_cast<size_t>(loop[k].edge)].id, f.edges[static_cast<size_t>(loop[next].edge)].id}});
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 // Per model edge id: the faces (by position) whose loops use it, once per use.
 std::map<long long, std::vector<size_t>> edge_users(const std::vector<wefm_cad::CadFace>& faces, const std::vector<char>& alive) {
   std::map<long long, std::vector<size_t>> out;
@@ -267,69 +313,114 @@ std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, s
 
 }  // namespace
 
+namespace {
+
+// The merges of one model, applied one after the other to its faces.
+class Merger {
+ public:
+  Merger(wefm_cad::CadModel& model, std::vector<double>& sizes, double h)
+      : faces_(model.faces), sizes_(sizes), tol_(1e-7 * model.bbox_diagonal), h_(h), alive_(faces_.size(), 1),
+        facet_face_(faces_.size()) {
+    users_ = edge_users(faces_, alive_);
+  }
+  bool alive(size_t i) const { return alive_[i] && faces_[i].error.empty(); }
+  const wefm_cad::CadFace& face(size_t i) const { return faces_[i]; }
+  bool narrow(size_t i) const { return wefm_cad::face_width(faces_[i]) < h_ / kNarrowRatio; }
+
+  // Merges face i into the smoothest neighbour across one of `across` (model edge ids; empty: any
+  // edge) that makes a valid face and is not narrow itself (two needles merged are a needle, its
+  // slivers only moved); the merged face keeps the neighbour's size (the smaller of the
+  // two multiplied the triangles of a whole model several times over for a few absorbed corners).
+  // Records the merge, or why none was made.
+  bool merge(size_t i, const std::set<long long>& across, double width, const std::string& reason) {
+    std::string why = "no neighbour across an edge turning by at most 50 degrees";
+    for (const Candidate& c : neighbours(faces_, i, users_, tol_)) {
+      if (!across.empty() && std::none_of(c.ids.begin(), c.ids.end(), [&](long long id) { return across.count(id) > 0; })) continue;
+      const size_t j = c.neighbour;
+      if (narrow(j)) {
+        why = "its smooth neighbours are narrow too";
+        continue;
+      }
+      wefm_cad::CadFace merged;
+      if (!faces_[j].error.empty() || !merge_pair(faces_[j], faces_[i], c.shared, tol_, merged, why)) continue;
+      for (size_t k : {i, j})
+        if (facet_face_[k].empty()) facet_face_[k].assign(faces_[k].triangles.size() / 3, faces_[k].index);
+      facet_face_[j].insert(facet_face_[j].end(), facet_face_[i].begin(), facet_face_[i].end());
+      vt_.merges.push_back({faces_[i].index, faces_[j].index, width, c.dihedral, c.ids, reason});
+      for (const auto& e : faces_[i].edges) {
+        auto& list = users_[e.id];
+        std::replace(list.begin(), list.end(), i, j);
+      }
+      for (long long id : c.ids) users_.erase(id);
+      faces_[j] = std::move(merged);
+      alive_[i] = 0;
+      return true;
+    }
+    vt_.merges.push_back({faces_[i].index, 0, width, 0, {}, reason + "; kept: " + why});
+    return false;
+  }
+
+  // The merged faces in place of the originals; the merges name the face each ended in.
+  VirtualTopology finish() {
+    if (std::none_of(vt_.merges.begin(), vt_.merges.end(), [](const FaceMerge& m) { return m.into; })) return std::move(vt_);
+    std::map<int, int> final_of;  // a face absorbed into one absorbed later names the last
+    for (auto it = vt_.merges.rbegin(); it != vt_.merges.rend(); ++it) {
+      if (!it->into) continue;
+      const auto f = final_of.find(it->into);
+      final_of[it->face] = f == final_of.end() ? it->into : f->second;
+    }
+    for (FaceMerge& m : vt_.merges)
+      if (m.into) m.into = final_of[m.face];
+    std::vector<wefm_cad::CadFace> kept;
+    std::vector<double> sizes;
+    for (size_t i = 0; i < faces_.size(); ++i)
+      if (alive_[i]) {
+        kept.push_back(std::move(faces_[i]));
+        vt_.facet_face.push_back(std::move(facet_face_[i]));
+        if (i < sizes_.size()) sizes.push_back(sizes_[i]);
+      }
+    faces_ = std::move(kept);
+    sizes_ = std::move(sizes);
+    return std::move(vt_);
+  }
+
+ private:
+  std::vector<wefm_cad::CadFace>& faces_;
+  std::vector<double>& sizes_;
+  double tol_, h_;
+  std::vector<char> alive_;
+  std::vector<std::vector<int>> facet_face_;
+  std::map<long long, std::vector<size_t>> users_;
+  VirtualTopology vt_;
+};
+
+}  // namespace
+
 VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vector<double>& face_sizes) {
-  VirtualTopology vt;
-  std::vector<wefm_cad::CadFace>& faces = model.faces;
-  const double tol = 1e-7 * model.bbox_diagonal;
-  std::vector<char> alive(faces.size(), 1);
-  std::vector<std::vector<int>> facet_face(faces.size());
+  Merger merger(model, face_sizes, h);
+  const size_t n = model.faces.size();
   std::vector<std::pair<double, size_t>> narrow;
-  for (size_t i = 0; i < faces.size(); ++i) {
-    if (!faces[i].error.empty()) continue;
-    const double w = wefm_cad::face_width(faces[i]);
+  for (size_t i = 0; i < n; ++i) {
+    const double w = merger.alive(i) ? wefm_cad::face_width(merger.face(i)) : 0;
     if (w > 0 && w < h / kNarrowRatio) narrow.push_back({w, i});
   }
   std::sort(narrow.begin(), narrow.end());
-  auto users = edge_users(faces, alive);
   for (const auto& [w0, i] : narrow) {
-    if (!alive[i]) continue;
-    const double w = wefm_cad::face_width(faces[i]);  // it may have absorbed a narrower one
+    const double w = merger.alive(i) ? wefm_cad::face_width(merger.face(i)) : 0;  // it may have absorbed a narrower one
     if (!(w < h / kNarrowRatio)) continue;
     char reason[96];
     std::snprintf(reason, sizeof reason, "narrow: width %.3g below h / %g", w, kNarrowRatio);
-    std::string why = "no neighbour across an edge turning by at most 50 degrees";
-    bool merged_any = false;
-    for (const Candidate& c : neighbours(faces, i, users, tol)) {
-      wefm_cad::CadFace merged;
-      if (!faces[c.neighbour].error.empty() || !merge_pair(faces[c.neighbour], faces[i], c.shared, tol, merged, why)) continue;
-      auto& ff = facet_face[c.neighbour];
-      if (ff.empty()) ff.assign(faces[c.neighbour].triangles.size() / 3, faces[c.neighbour].index);
-      if (facet_face[i].empty()) facet_face[i].assign(faces[i].triangles.size() / 3, faces[i].index);
-      ff.insert(ff.end(), facet_face[i].begin(), facet_face[i].end());
-      vt.merges.push_back({faces[i].index, faces[c.neighbour].index, w, c.dihedral, c.ids, reason});
-      for (const auto& e : faces[i].edges) {
-        auto& list = users[e.id];
-        std::replace(list.begin(), list.end(), i, c.neighbour);
-      }
-      for (long long id : c.ids) users.erase(id);
-      faces[c.neighbour] = std::move(merged);
-      alive[i] = 0;
-      merged_any = true;
-      break;
-    }
-    if (!merged_any) vt.merges.push_back({faces[i].index, 0, w, 0, {}, std::string(reason) + "; kept: " + why});
+    merger.merge(i, {}, w, reason);
   }
-  if (std::none_of(vt.merges.begin(), vt.merges.end(), [](const FaceMerge& m) { return m.into; })) return vt;
-  // Faces absorbed earlier into a face that was absorbed later name the final one.
-  std::map<int, int> final_of;
-  for (auto it = vt.merges.rbegin(); it != vt.merges.rend(); ++it) {
-    if (!it->into) continue;
-    const auto f = final_of.find(it->into);
-    final_of[it->face] = f == final_of.end() ? it->into : f->second;
+  for (size_t i = 0; i < n; ++i) {
+    if (!merger.alive(i)) continue;
+    const auto corners = sharp_corners(merger.face(i));
+    if (corners.empty()) continue;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "sharp corner: %.1f degrees below %g", corners[0].first, kSharpCornerDegrees);
+    merger.merge(i, {corners[0].second[0], corners[0].second[1]}, wefm_cad::face_width(merger.face(i)), reason);
   }
-  for (FaceMerge& m : vt.merges)
-    if (m.into) m.into = final_of[m.face];
-  std::vector<wefm_cad::CadFace> kept;
-  std::vector<double> sizes;
-  for (size_t i = 0; i < faces.size(); ++i)
-    if (alive[i]) {
-      kept.push_back(std::move(faces[i]));
-      vt.facet_face.push_back(std::move(facet_face[i]));
-      if (i < face_sizes.size()) sizes.push_back(face_sizes[i]);
-    }
-  faces = std::move(kept);
-  face_sizes = std::move(sizes);
-  return vt;
+  return merger.finish();
 }
 
 std::vector<FacePart> split_by_face(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
