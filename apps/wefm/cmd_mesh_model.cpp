@@ -720,8 +720,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   int64_t collapsed = 0;
   for (size_t i = 0; i < runs.size(); ++i)
     if (!runs[i].tris.empty())
-      for (const FacePart& part : split_by_face(virtual_faces, i, *runs[i].face, runs[i].xyz, runs[i].tris, size))
-        collapsed += whole.add_face(part.face, part.xyz, part.tris);
+      collapsed += whole.add_face(runs[i].face->index, runs[i].xyz, runs[i].tris,
+                                  triangle_faces(virtual_faces, i, *runs[i].face, runs[i].xyz, runs[i].tris, size));
   std::set<std::pair<int, int>> alike;
   for (const FaceMeshRun& r : runs)
     if (r.copy_of) alike.insert({r.copy_of, r.face->index});

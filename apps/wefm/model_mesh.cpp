@@ -140,14 +140,16 @@ int64_t ModelMesh::drop_fins(const std::set<std::pair<int, int>>& alike) {
   }
   if (!dropped) return 0;
   std::vector<int32_t> tris;
-  std::vector<int> faces;
+  std::vector<int> faces, tags;
   for (size_t t = 0; t < tri_face_.size(); ++t)
     if (!drop[t]) {
       tris.insert(tris.end(), &tris_[3 * t], &tris_[3 * t] + 3);
       faces.push_back(tri_face_[t]);
+      tags.push_back(tri_tag_[t]);
     }
   tris_ = std::move(tris);
   tri_face_ = std::move(faces);
+  tri_tag_ = std::move(tags);
   return dropped;
 }
 
@@ -161,8 +163,11 @@ std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int3
   return boundary;
 }
 
-int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
+int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
+                            const std::vector<int>& triangle_tags) {
   face_tags_.push_back(face_tag);
+  for (int tag : std::set<int>(triangle_tags.begin(), triangle_tags.end()))
+    if (tag != face_tag) face_tags_.push_back(tag);
   const std::vector<char> boundary = boundary_nodes(xyz.size() / 3, triangles);
   std::vector<int32_t> global(xyz.size() / 3);
   for (size_t v = 0; v < global.size(); ++v) {
@@ -178,6 +183,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
   // Welding can also turn two triangles that touch both sides of a seam near its degenerate end into
   // one triangle twice, once each way: a zero-volume fold. Both copies are dropped.
   std::vector<std::array<int32_t, 3>> kept;
+  std::vector<int> kept_tags;
   std::map<std::array<int32_t, 3>, std::vector<size_t>> by_corners;
   int64_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
@@ -191,6 +197,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     std::sort(key.begin(), key.end());
     by_corners[key].push_back(kept.size());
     kept.push_back({a, b, c});
+    kept_tags.push_back(triangle_tags.empty() ? face_tag : triangle_tags[t / 3]);
   }
   std::vector<char> fold(kept.size(), 0);
   for (const auto& [key, list] : by_corners)
@@ -203,6 +210,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     }
     tris_.insert(tris_.end(), kept[i].begin(), kept[i].end());
     tri_face_.push_back(face_tag);
+    tri_tag_.push_back(kept_tags[i]);
   }
   return dropped;
 }
@@ -359,7 +367,7 @@ bool ModelMesh::write_msh(const std::string& path, std::string& error) const {
   }
   out << "$EndNodes\n$Elements\n";
   std::map<int, std::vector<size_t>> tris_of;
-  for (size_t t = 0; t < tri_face_.size(); ++t) tris_of[tri_face_[t]].push_back(t);
+  for (size_t t = 0; t < tri_tag_.size(); ++t) tris_of[tri_tag_[t]].push_back(t);
   out << tris_of.size() << ' ' << triangles() << " 1 " << triangles() << '\n';
   for (const auto& [f, ts] : tris_of) {
     out << "2 " << f << " 2 " << ts.size() << '\n';
@@ -377,9 +385,9 @@ bool ModelMesh::write_obj(const std::string& path, std::string& error) const {
     out << buf;
   }
   int current = -1;
-  for (size_t t = 0; t < tri_face_.size(); ++t) {
-    if (tri_face_[t] != current) {
-      current = tri_face_[t];
+  for (size_t t = 0; t < tri_tag_.size(); ++t) {
+    if (tri_tag_[t] != current) {
+      current = tri_tag_[t];
       out << "g face_" << current << '\n';
     }
     out << "f " << tris_[3 * t] + 1 << ' ' << tris_[3 * t + 1] + 1 << ' ' << tris_[3 * t + 2] + 1 << '\n';

@@ -423,9 +423,9 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
   return merger.finish();
 }
 
-std::vector<FacePart> split_by_face(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
-                                    const std::vector<double>& xyz, const std::vector<int32_t>& tris, double h) {
-  if (virtual_face >= vt.facet_face.size() || vt.facet_face[virtual_face].empty()) return {{face.index, xyz, tris}};
+std::vector<int> triangle_faces(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
+                                const std::vector<double>& xyz, const std::vector<int32_t>& tris, double h) {
+  if (virtual_face >= vt.facet_face.size() || vt.facet_face[virtual_face].empty()) return {};
   const std::vector<int>& source = vt.facet_face[virtual_face];
   // The absorbed faces' facets, with their bounding box grown by h / 2: a triangle's centroid over
   // one of them (its projection inside, at most h / 2 off) goes to that face, any other to `face`.
@@ -447,32 +447,18 @@ std::vector<FacePart> split_by_face(const VirtualTopology& vt, size_t virtual_fa
     const double q[3] = {a[0] + s * u[0] + r * v[0] - p[0], a[1] + s * u[1] + r * v[1] - p[1], a[2] + s * u[2] + r * v[2] - p[2]};
     return std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) <= reach;
   };
-  std::map<int, std::vector<int32_t>> groups;
+  std::vector<int> out;
   for (size_t t = 0; t + 2 < tris.size(); t += 3) {
     double c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = (xyz[3 * static_cast<size_t>(tris[t]) + static_cast<size_t>(k)] + xyz[3 * static_cast<size_t>(tris[t + 1]) + static_cast<size_t>(k)] +
-              xyz[3 * static_cast<size_t>(tris[t + 2]) + static_cast<size_t>(k)]) / 3;
+    for (size_t k = 0; k < 3; ++k)
+      c[k] = (xyz[3 * static_cast<size_t>(tris[t]) + k] + xyz[3 * static_cast<size_t>(tris[t + 1]) + k] + xyz[3 * static_cast<size_t>(tris[t + 2]) + k]) / 3;
     int tag = face.index;
-    for (const auto& [g, list] : facets) {
+    for (const auto& [g, list] : facets)
       if (std::any_of(list.begin(), list.end(), [&](size_t f) { return over(c, f); })) {
         tag = g;
         break;
       }
-    }
-    groups[tag].insert(groups[tag].end(), tris.begin() + static_cast<std::ptrdiff_t>(t), tris.begin() + static_cast<std::ptrdiff_t>(t + 3));
-  }
-  // Each part with its own nodes: ModelMesh writes every node it is given.
-  std::vector<FacePart> out;
-  for (auto& [tag, list] : groups) {
-    FacePart part{tag, {}, {}};
-    std::unordered_map<int32_t, int32_t> local;
-    for (int32_t v : list) {
-      const auto [it, fresh] = local.emplace(v, static_cast<int32_t>(part.xyz.size() / 3));
-      if (fresh) part.xyz.insert(part.xyz.end(), &xyz[3 * static_cast<size_t>(v)], &xyz[3 * static_cast<size_t>(v)] + 3);
-      part.tris.push_back(it->second);
-    }
-    out.push_back(std::move(part));
+    out.push_back(tag);
   }
   return out;
 }

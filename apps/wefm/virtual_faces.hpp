@@ -7,7 +7,7 @@
 // two triangulations become one CadFace (the shared chain vertices are merged, the shared edges
 // leave the loops, the loops are spliced), the shared edges get no nodes and the merged facets are
 // flattened and meshed as one face. Its triangles are handed back to the original faces afterwards
-// (split_by_face), so the output keeps one group per B-rep face.
+// (triangle_faces), so the output keeps one group per B-rep face.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -40,19 +40,11 @@ struct VirtualTopology {
 // before the merge (the narrow facets' curvature and width would otherwise shrink it).
 VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vector<double>& face_sizes);
 
-// Part of a merged face's mesh that lies on one original face, with its own nodes.
-struct FacePart {
-  int face = 0;
-  std::vector<double> xyz;
-  std::vector<int32_t> tris;
-};
-
-// The triangles of a virtual face's mesh grouped by the original face each lies on: the absorbed
-// face whose facet is under the triangle's centroid (within h / 2), else the face that kept its
-// index. A face left alone is one part.
-std::vector<FacePart> split_by_face(const VirtualTopology& vt, size_t virtual_face,
-                                    const wefm_cad::CadFace& face, const std::vector<double>& xyz,
-                                    const std::vector<int32_t>& tris, double h);
+// Per triangle of a virtual face's mesh, the original face it lies on: the absorbed face whose
+// facet is under the triangle's centroid (within h / 2), else the face that kept its index. Empty
+// for a face that absorbed none.
+std::vector<int> triangle_faces(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
+                                const std::vector<double>& xyz, const std::vector<int32_t>& tris, double h);
 
 // The report's list of merges (face, merged_into, reason, width, dihedral_degrees, shared_edges),
 // and the faces merged into one face.
