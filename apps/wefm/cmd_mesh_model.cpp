@@ -66,8 +66,9 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
-      {"no-merge-faces", 0, "", "mesh every B-rep face on its own (default: a face narrower than H / 20 is meshed "
-                                "together with its smoothest neighbour, its triangles still grouped as its own)", "", false},
+      {"no-merge-faces", 0, "", "mesh every B-rep face on its own (default: a face narrower than H / 100 or with a "
+                                "corner under 12 degrees is meshed together with its smoothest neighbour, its "
+                                "triangles still written as its own)", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
       {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "

@@ -34,8 +34,8 @@ struct VirtualTopology {
   std::vector<std::vector<int>> facet_face;
 };
 
-// Replaces the faces of `model` narrower than h / 20 (2 area / perimeter) by their merge with a
-// neighbour (see virtual_faces.cpp for the rule); the faces keep their order. `face_sizes` (one per
+// Replaces the faces of `model` narrower than h / 100 (2 area / perimeter), and those with a corner
+// under 12 degrees, by their merge with a neighbour (see virtual_faces.cpp for the rule); the faces keep their order. `face_sizes` (one per
 // face) follows: a merged face keeps the size of the face that absorbed the narrow one, its own
 // before the merge (the narrow facets' curvature and width would otherwise shrink it).
 VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vector<double>& face_sizes);
