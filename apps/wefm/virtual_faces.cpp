@@ -23,10 +23,15 @@ namespace {
 // without merging: of the faces between h / 100 and h / 20 wide, 18 of 2,462 had a triangle with Lo
 // lambda below 0.3; of those narrower than h / 100, 91 of 132.
 constexpr double kNarrowRatio = 100;
-// Never merged across an edge where the facet normals of the two faces turn by more than this:
-// a 45-degree chamfer merges with either face, the right-angle edge of a box does not. A triangle
-// spanning a strip of width w at such a kink leaves the surface by at most w sin(25 deg) < h / 40.
+// A narrow face is never merged across an edge where the facet normals of the two faces turn by
+// more than this: a 45-degree chamfer merges with either face, the right-angle edge of a box does
+// not. A triangle spanning a strip of width w < h / 100 at such a kink leaves the surface by at most
+// w sin(25 deg) < h / 200.
 constexpr double kSharpDegrees = 50;
+// A face merged for a sharp corner is wide: triangles of size h straddle the edge left out, and
+// leave the surface by up to h / 2 sin(turn / 2), h / 8 at this turn: the chord deviation that the
+// local size allows on a curved face (h at most its radius, h^2 / 8r).
+constexpr double kCornerSharpDegrees = 30;
 constexpr double kPi = 3.14159265358979323846;
 // A face with a corner sharper than this (degrees, inside the face) is merged with the neighbour
 // across one of the corner's edges: a triangle in a corner of angle t has Lo lambda at most
@@ -334,9 +339,10 @@ class Merger {
   // slivers only moved); the merged face keeps the neighbour's size (the smaller of the
   // two multiplied the triangles of a whole model several times over for a few absorbed corners).
   // Records the merge, or why none was made.
-  bool merge(size_t i, const std::set<long long>& across, double width, const std::string& reason) {
-    std::string why = "no neighbour across an edge turning by at most 50 degrees";
+  bool merge(size_t i, const std::set<long long>& across, double max_turn, double width, const std::string& reason) {
+    std::string why = "no neighbour across an edge turning by at most " + std::to_string(static_cast<int>(max_turn)) + " degrees";
     for (const Candidate& c : neighbours(faces_, i, users_, tol_)) {
+      if (c.dihedral > max_turn) continue;
       if (!across.empty() && std::none_of(c.ids.begin(), c.ids.end(), [&](long long id) { return across.count(id) > 0; })) continue;
       const size_t j = c.neighbour;
       if (narrow(j)) {
@@ -412,7 +418,7 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
     if (!(w < h / kNarrowRatio)) continue;
     char reason[96];
     std::snprintf(reason, sizeof reason, "narrow: width %.3g below h / %g", w, kNarrowRatio);
-    merger.merge(i, {}, w, reason);
+    merger.merge(i, {}, kSharpDegrees, w, reason);
   }
   for (size_t i = 0; i < n; ++i) {
     if (!merger.alive(i)) continue;
@@ -420,7 +426,7 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
     if (corners.empty()) continue;
     char reason[96];
     std::snprintf(reason, sizeof reason, "sharp corner: %.1f degrees below %g", corners[0].first, kSharpCornerDegrees);
-    merger.merge(i, {corners[0].second[0], corners[0].second[1]}, wefm_cad::face_width(merger.face(i)), reason);
+    merger.merge(i, {corners[0].second[0], corners[0].second[1]}, kCornerSharpDegrees, wefm_cad::face_width(merger.face(i)), reason);
   }
   return merger.finish();
 }
