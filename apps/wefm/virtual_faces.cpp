@@ -37,6 +37,8 @@ constexpr double kPi = 3.14159265358979323846;
 // across one of the corner's edges: a triangle in a corner of angle t has Lo lambda at most
 // 2 sqrt(3) sin t / (2 + 4 sin^2(t / 2)), 0.30 at 10.5 degrees, whatever the sizes.
 constexpr double kSharpCornerDegrees = 12;
+// The quality a merge is for (issue 28: min Lo lambda 0.3 on every model).
+constexpr double kLambdaFloor = 0.3;
 
 using Normal = std::array<double, 3>;
 
@@ -142,11 +144,45 @@ bool manifold(const std::vector<int32_t>& tris) {
   return true;
 }
 
+// Whether the library takes the merged face: its topology (loops close, edges are facet edges,
+// one outer loop), and its flattening meshes at size h (a strip folded at a kink can flatten onto
+// itself: "the domain's boundary intersects itself") with min Lo lambda kLambdaFloor.
+bool library_takes(const wefm_cad::CadFace& f, double h, std::string& why) {
+  wefm_face* raw = nullptr;
+  if (wefm_face_create(&raw) != WEFM_OK) return why = "out of memory", false;
+  std::unique_ptr<wefm_face, FaceDeleter> handle(raw);
+  std::string error;
+  if (wefm_cad::set_face_from_cad(raw, f, error) != WEFM_OK || wefm_face_build(raw) != WEFM_OK)
+    return why = "topology: " + (error.empty() ? std::string(wefm_face_last_error(raw)) : error), false;
+  const wefm_status st = wefm_face_solve(raw);
+  int32_t has = 0;
+  wefm_face_has_result(raw, &has);
+  if (st != WEFM_OK && !(st == WEFM_ERROR_NOT_CONVERGED && has))
+    return why = std::string("flatten: ") + wefm_face_last_error(raw), false;
+  wefm_mesh_options options;
+  wefm_mesh_options_init(&options, sizeof options);
+  options.size = h;
+  wefm_domain_mesh* dm = nullptr;
+  const wefm_status ms = wefm_face_mesh_domain(raw, &options, &dm);
+  OwnedDomainMesh owned(dm);
+  if (ms != WEFM_OK) return why = std::string("mesh: ") + wefm_face_last_error(raw), false;
+  // A merge is made for the quality floor: one that does not reach it on its own (the narrow face's
+  // short end edges left in a corner of the merged face) is not made.
+  wefm_mesh_report report;
+  wefm_mesh_report_init(&report, sizeof report);
+  if (wefm_domain_mesh_get_report(dm, &report) == WEFM_OK && report.lambda_min < kLambdaFloor) {
+    char text[96];
+    std::snprintf(text, sizeof text, "the merged face meshes with min lambda %.3f", report.lambda_min);
+    return why = text, false;
+  }
+  return true;
+}
+
 // Merges face b into face a across the edges they share (`shared`: pairs of edge index in a, in b).
 // The result keeps a's index and surface type. False + why when the result would not be one valid
 // face (see the checks).
 bool merge_pair(const wefm_cad::CadFace& a, const wefm_cad::CadFace& b, const std::vector<std::pair<size_t, size_t>>& shared,
-                double tol, wefm_cad::CadFace& out, std::string& why) {
+                double tol, double h, wefm_cad::CadFace& out, std::string& why) {
   std::vector<int32_t> vmap(b.xyz.size() / 3, -1);
   std::set<size_t> sa, sb;
   std::map<size_t, size_t> a_of_b;
@@ -220,14 +256,7 @@ bool merge_pair(const wefm_cad::CadFace& a, const wefm_cad::CadFace& b, const st
   }
   out.dropped_triangles = a.dropped_triangles + b.dropped_triangles;
   out.triangulation_kept = a.triangulation_kept && b.triangulation_kept;
-  // The library's own check of the topology (loops close, edges are facet edges, one outer loop).
-  wefm_face* raw = nullptr;
-  if (wefm_face_create(&raw) != WEFM_OK) return why = "out of memory", false;
-  std::unique_ptr<wefm_face, FaceDeleter> handle(raw);
-  std::string error;
-  if (wefm_cad::set_face_from_cad(raw, out, error) != WEFM_OK || wefm_face_build(raw) != WEFM_OK)
-    return why = "topology: " + (error.empty() ? std::string(wefm_face_last_error(raw)) : error), false;
-  return true;
+  return library_takes(out, h, why);
 }
 
 // The face's corners sharper than kSharpCornerDegrees: (angle in degrees, the ids of the two model
@@ -350,7 +379,7 @@ class Merger {
         continue;
       }
       wefm_cad::CadFace merged;
-      if (!faces_[j].error.empty() || !merge_pair(faces_[j], faces_[i], c.shared, tol_, merged, why)) continue;
+      if (!faces_[j].error.empty() || !merge_pair(faces_[j], faces_[i], c.shared, tol_, j < sizes_.size() ? sizes_[j] : h_, merged, why)) continue;
       for (size_t k : {i, j})
         if (facet_face_[k].empty()) facet_face_[k].assign(faces_[k].triangles.size() / 3, faces_[k].index);
       facet_face_[j].insert(facet_face_[j].end(), facet_face_[i].begin(), facet_face_[i].end());
