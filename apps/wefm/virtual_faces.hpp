@@ -7,7 +7,10 @@
 // two triangulations become one CadFace (the shared chain vertices are merged, the shared edges
 // leave the loops, the loops are spliced), the shared edges get no nodes and the merged facets are
 // flattened and meshed as one face. Its triangles are handed back to the original faces afterwards
-// (triangle_faces), so the output keeps one group per B-rep face.
+// (triangle_faces), so the output keeps one group per B-rep face. A face with a corner under 12
+// degrees (no triangle there can reach Lo lambda 0.3) is merged the same way with the neighbour
+// across one of the corner's edges. A merge is kept only if the library flattens and meshes the
+// merged face on its own at its size with min lambda 0.3.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -16,12 +19,12 @@
 
 namespace wefm_cli {
 
-// What was done to one narrow face: merged into another, or left alone.
+// What was done to one narrow or sharp-cornered face: merged into another, or left alone.
 struct FaceMerge {
   int face = 0;          // the merged face (CadFace::index)
   int into = 0;          // the face it was merged into (the virtual face keeps that one's index);
-                         // 0: a narrow face left alone (reason says why)
-  double width = 0;      // 2 area / perimeter of the merged face, model units
+                         // 0: left alone (reason says why)
+  double width = 0;      // 2 area / perimeter of the face, model units
   double dihedral = 0;   // largest angle between the facet normals across the shared edges, degrees
   std::vector<long long> shared_edges;  // model edge ids left out of the mesh
   std::string reason;
