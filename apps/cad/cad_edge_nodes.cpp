@@ -471,16 +471,19 @@ double face_area(const CadFace& f) {
   return area;
 }
 
+double face_width(const CadFace& f) {
+  double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
+  for (const auto& loop : f.loops)
+    for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
+  return perimeter > 0 ? 2 * face_area(f) / perimeter : std::nan("");
+}
+
 std::vector<double> local_face_sizes(const CadModel& model, double h) {
   std::vector<double> sizes(model.faces.size(), h);
   for (size_t k = 0; k < model.faces.size(); ++k) {
     const CadFace& f = model.faces[k];
     if (!f.error.empty()) continue;
-    const double area = face_area(f);
-    double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
-    for (const auto& loop : f.loops)
-      for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
-    const double width = perimeter > 0 ? 2 * area / perimeter : h;
+    const double w = face_width(f), width = std::isnan(w) ? h : w;
     // A face that wraps round its smaller radius r (a tube, a sphere) gets about six segments
     // around a full turn (a hexagon's side is its radius): coarser, the chords of a thin tube fold
     // onto each other. A face that turns less (a fillet, a blend) gets sqrt(r h): its chords then
@@ -492,7 +495,7 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     const double r = curvature_radius(f);
     const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
     const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
-    const double length = std::isfinite(r) && r > 0 ? area / (2 * 3.14159265358979 * r) : h;  // of a tube of radius r
+    const double length = std::isfinite(r) && r > 0 ? face_area(f) / (2 * 3.14159265358979 * r) : h;  // of a tube of radius r
     const bool wraps = std::isfinite(r) && curved == r && length <= h &&
                        std::any_of(f.edges.begin(), f.edges.end(), [](const CadEdge& e) { return e.seam; });
     const double smallest = wraps ? std::min(h / kSmallestRadiusFraction, 2 * 3.14159265358979 * r / kFewestAround)

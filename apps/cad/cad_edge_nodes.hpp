@@ -26,6 +26,10 @@ std::vector<double> local_face_sizes(const CadModel& model, double h);
 // The area of a face's tessellation.
 double face_area(const CadFace& face);
 
+// A face's width: 2 area / perimeter over its loops (a seam counts twice, as it bounds the domain
+// twice): the width of a long strip, the radius of a disk. NaN when the loops have no length.
+double face_width(const CadFace& face);
+
 // Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
 // empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments also

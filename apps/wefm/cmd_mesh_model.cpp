@@ -33,6 +33,7 @@
 #include "output_file.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
+#include "virtual_faces.hpp"
 #endif
 
 namespace wefm_cli {
@@ -66,6 +67,9 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
+      {"no-merge-faces", 0, "", "mesh every B-rep face on its own (default: a face narrower than H / 100 or with a "
+                                "corner under 12 degrees is meshed together with its smoothest neighbour, its "
+                                "triangles still written as its own)", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
       {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "
@@ -629,6 +633,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     face_sizes = wefm_cad::local_face_sizes(model, size);
     gradation = 0.3;
   }
+  const VirtualTopology virtual_faces =
+      args.has("no-merge-faces") ? VirtualTopology{} : merge_narrow_faces(model, size, face_sizes);
   // Before any edge is discretised: a size far below the model's (a typo, a unit mix-up) would
   // otherwise grow until memory runs out.
   const double estimate = estimated_triangles(model, face_sizes);
@@ -715,8 +721,10 @@ int run_mesh_model(const std::vector<std::string>& argv) {
 
   ModelMesh whole(weld_tolerance);
   int64_t collapsed = 0;
-  for (const FaceMeshRun& r : runs)
-    if (!r.tris.empty()) collapsed += whole.add_face(r.face->index, r.xyz, r.tris);
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (!runs[i].tris.empty())
+      collapsed += whole.add_face(runs[i].face->index, runs[i].xyz, runs[i].tris,
+                                  triangle_faces(virtual_faces, i, *runs[i].face, runs[i].xyz, runs[i].tris, size));
   std::set<std::pair<int, int>> alike;
   for (const FaceMeshRun& r : runs)
     if (r.copy_of) alike.insert({r.copy_of, r.face->index});
@@ -799,15 +807,18 @@ int run_mesh_model(const std::vector<std::string>& argv) {
                        {"reason", r.reason}, {"elements", fq.triangles},
                        {"type", transfinite.count(r.face->index) ? "transfinite" : "free"},
                        {"size", face_sizes[static_cast<size_t>(&r - runs.data())]},
+                       {"width", std::isfinite(wefm_cad::face_width(*r.face)) ? Json(wefm_cad::face_width(*r.face)) : Json(nullptr)},
                        {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},
                        {"lambda_min", fq.triangles ? Json(fq.lambda_min) : Json(nullptr)},
                        {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
                        {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
                        {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements},
                        {"mesh_of_face", r.copy_of ? Json(r.copy_of) : Json(nullptr)},
+                       {"merged_faces", merged_into(virtual_faces, r.face->index)},
                        {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
     }
     rep["faces"] = faces;
+    rep["merged_faces"] = merges_json(virtual_faces);
     if (const int code = write_file_atomically(args.value("report"), rep.dump(1) + '\n', error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       exit_code = std::max<int>(exit_code, code);

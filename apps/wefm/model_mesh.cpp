@@ -135,14 +135,16 @@ int64_t ModelMesh::drop_fins(const std::set<std::pair<int, int>>& alike) {
   }
   if (!dropped) return 0;
   std::vector<int32_t> tris;
-  std::vector<int> faces;
+  std::vector<int> faces, tags;
   for (size_t t = 0; t < tri_face_.size(); ++t)
     if (!drop[t]) {
       tris.insert(tris.end(), &tris_[3 * t], &tris_[3 * t] + 3);
       faces.push_back(tri_face_[t]);
+      tags.push_back(tri_tag_[t]);
     }
   tris_ = std::move(tris);
   tri_face_ = std::move(faces);
+  tri_tag_ = std::move(tags);
   return dropped;
 }
 
@@ -156,8 +158,11 @@ std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int3
   return boundary;
 }
 
-int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles) {
+int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
+                            const std::vector<int>& triangle_tags) {
   face_tags_.push_back(face_tag);
+  for (int tag : std::set<int>(triangle_tags.begin(), triangle_tags.end()))
+    if (tag != face_tag) face_tags_.push_back(tag);
   const std::vector<char> boundary = boundary_nodes(xyz.size() / 3, triangles);
   std::vector<int32_t> global(xyz.size() / 3);
   for (size_t v = 0; v < global.size(); ++v) {
@@ -173,6 +178,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
   // Welding can also turn two triangles that touch both sides of a seam near its degenerate end into
   // one triangle twice, once each way: a zero-volume fold. Both copies are dropped.
   std::vector<std::array<int32_t, 3>> kept;
+  std::vector<int> kept_tags;
   std::map<std::array<int32_t, 3>, std::vector<size_t>> by_corners;
   int64_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
@@ -186,6 +192,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     std::sort(key.begin(), key.end());
     by_corners[key].push_back(kept.size());
     kept.push_back({a, b, c});
+    kept_tags.push_back(triangle_tags.empty() ? face_tag : triangle_tags[t / 3]);
   }
   std::vector<char> fold(kept.size(), 0);
   for (const auto& [key, list] : by_corners)
@@ -198,6 +205,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     }
     tris_.insert(tris_.end(), kept[i].begin(), kept[i].end());
     tri_face_.push_back(face_tag);
+    tri_tag_.push_back(kept_tags[i]);
   }
   return dropped;
 }
@@ -322,7 +330,7 @@ MeshDescription ModelMesh::description() const {
   MeshDescription d;
   d.xyz = xyz_;
   d.elements = tris_;
-  d.element_group = tri_face_;
+  d.element_group = tri_tag_;  // a merged face's triangles go back to the B-rep faces under them
   d.point_group = node_face_;
   for (int f : face_tags_) d.groups.push_back({f, "face_" + std::to_string(f)});
   d.obj_groups = true;

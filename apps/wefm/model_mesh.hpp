@@ -62,8 +62,11 @@ class ModelMesh {
 
   // Adds one face's mesh (3 doubles per node, 3 node indices per triangle). Returns the number of
   // triangles dropped because welding collapsed them (at a pole) or folded two of them onto the same
-  // three nodes (near the end of a seam).
-  int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
+  // three nodes (near the end of a seam). `triangle_tags` (one per triangle, or empty for face_tag)
+  // are the faces the output puts them in: a face meshed for several B-rep faces (virtual_faces)
+  // is welded and checked as one face, written as its B-rep faces.
+  int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
+                   const std::vector<int>& triangle_tags = {});
 
   // Two faces meeting at a sharp kink of their common edge can each close it with the same triangle
   // (three consecutive nodes of the edge for corners), once each way: a fin of no volume, the kink's
@@ -102,6 +105,7 @@ class ModelMesh {
   std::set<int32_t> fin_nodes_;         // the kink nodes drop_fins left on no triangle
   std::vector<int32_t> tris_;
   std::vector<int> tri_face_;
+  std::vector<int> tri_tag_;            // the face a triangle is written in
   std::vector<int> face_tags_;          // in order of addition
   PointGrid grid_;                      // welded boundary nodes
   std::unordered_map<uint64_t, int> expected_uses_;  // node pair on a model edge -> face uses

@@ -1,0 +1,518 @@
+#include "virtual_faces.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <set>
+#include <unordered_map>
+
+#include "cad_edge_nodes.hpp"
+#include "cad_wefm.hpp"
+#include "owned.hpp"
+
+namespace wefm_cli {
+
+namespace {
+
+// A face narrower than h / this (2 area / perimeter) is merged. Wider ones mesh well on their own:
+// their local size and the edges' shrinking towards narrow parts (down to h / 32, cad_edge_nodes)
+// give triangles across them. Measured over the 59 cad-more models at h = 1/40 of the diagonal
+// without merging: of the faces between h / 100 and h / 20 wide, 18 of 2,462 had a triangle with Lo
+// lambda below 0.3; of those narrower than h / 100, 91 of 132.
+constexpr double kNarrowRatio = 100;
+// A narrow face is never merged across an edge where the facet normals of the two faces turn by
+// more than this: a 45-degree chamfer merges with either face, the right-angle edge of a box does
+// not. A triangle spanning a strip of width w < h / 100 at such a kink leaves the surface by at most
+// w sin(25 deg) < h / 200.
+constexpr double kSharpDegrees = 50;
+// A face merged for a sharp corner is wide: triangles of size h straddle the edge left out, and
+// leave the surface by up to h / 2 sin(turn / 2), h / 8 at this turn: the chord deviation that the
+// local size allows on a curved face (h at most its radius, h^2 / 8r).
+constexpr double kCornerSharpDegrees = 30;
+constexpr double kPi = 3.14159265358979323846;
+// A face with a corner sharper than this (degrees, inside the face) is merged with the neighbour
+// across one of the corner's edges: a triangle in a corner of angle t has Lo lambda at most
+// 2 sqrt(3) sin t / (2 + 4 sin^2(t / 2)), 0.30 at 10.5 degrees, whatever the sizes.
+constexpr double kSharpCornerDegrees = 12;
+// The quality a merge is for (issue 28: min Lo lambda 0.3 on every model).
+constexpr double kLambdaFloor = 0.3;
+
+using Normal = std::array<double, 3>;
+
+const double* at(const wefm_cad::CadFace& f, int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; }
+
+double distance(const double* a, const double* b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+Normal facet_normal(const wefm_cad::CadFace& f, size_t t) {
+  const double *a = at(f, f.triangles[3 * t]), *b = at(f, f.triangles[3 * t + 1]), *c = at(f, f.triangles[3 * t + 2]);
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  Normal n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& x : n) x = len > 0 ? x / len : 0;
+  return n;
+}
+
+uint64_t pair_key(int32_t a, int32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
+
+// Facet edge (unordered vertex pair) -> a facet having it.
+std::unordered_map<uint64_t, size_t> facet_of_edge(const wefm_cad::CadFace& f) {
+  std::unordered_map<uint64_t, size_t> out;
+  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
+    for (size_t c = 0; c < 3; ++c) out.emplace(pair_key(f.triangles[3 * t + c], f.triangles[3 * t + (c + 1) % 3]), t);
+  return out;
+}
+
+// The largest angle, in degrees, between the facet normals of a and b along the chain of edge
+// index ea of a and eb of b (the same model edge); 180 when a segment has no facet on one side.
+double dihedral(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& b, size_t eb, bool reversed) {
+  const auto fa = facet_of_edge(a), fb = facet_of_edge(b);
+  const auto& ca = a.edges[ea].vertices;
+  const auto& cb = b.edges[eb].vertices;
+  const size_t n = ca.size();
+  double worst = 0;
+  for (size_t k = 0; k + 1 < n; ++k) {
+    const size_t kb = reversed ? n - 1 - k : k, kb1 = reversed ? n - 2 - k : k + 1;
+    const auto ia = fa.find(pair_key(ca[k], ca[k + 1])), ib = fb.find(pair_key(cb[kb], cb[kb1]));
+    if (ia == fa.end() || ib == fb.end()) return 180;
+    const Normal na = facet_normal(a, ia->second), nb = facet_normal(b, ib->second);
+    const double c = std::clamp(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2], -1.0, 1.0);
+    worst = std::max(worst, std::acos(c) * 180 / kPi);
+  }
+  return worst;
+}
+
+// Whether b's chain of edge eb runs along a's chain of edge ea (same points within tol), forwards
+// (reversed = false) or backwards.
+bool same_chain(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& b, size_t eb, double tol, bool& reversed) {
+  const auto& ca = a.edges[ea].vertices;
+  const auto& cb = b.edges[eb].vertices;
+  if (ca.size() != cb.size() || ca.size() < 2) return false;
+  for (bool rev : {false, true}) {
+    bool ok = true;
+    for (size_t k = 0; k < ca.size() && ok; ++k) ok = distance(at(a, ca[k]), at(b, cb[rev ? ca.size() - 1 - k : k])) <= tol;
+    if (ok) {
+      reversed = rev;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Where the uses of the shared edges sit: the one loop holding all of them, rotated so they come
+// last, as one run. False when they are spread over loops, not contiguous or used more than once.
+bool shared_run(const wefm_cad::CadFace& f, const std::set<size_t>& shared, int& loop, std::vector<wefm_cad::CadEdgeUse>& rest,
+                std::vector<wefm_cad::CadEdgeUse>& run) {
+  loop = -1;
+  for (size_t l = 0; l < f.loops.size(); ++l)
+    for (const auto& u : f.loops[l])
+      if (shared.count(static_cast<size_t>(u.edge))) {
+        if (loop >= 0 && loop != static_cast<int>(l)) return false;
+        loop = static_cast<int>(l);
+      }
+  if (loop < 0) return false;
+  const auto& uses = f.loops[static_cast<size_t>(loop)];
+  const size_t n = uses.size();
+  auto in = [&](size_t k) { return shared.count(static_cast<size_t>(uses[k % n].edge)) > 0; };
+  size_t start = 0;  // first use of the run: a shared use after an unshared one
+  for (size_t k = 0; k < n; ++k)
+    if (in(k) && !in(k + n - 1)) start = k;
+  rest.clear(), run.clear();
+  for (size_t k = 0; k < n; ++k) {
+    const auto& u = uses[(start + k) % n];
+    (in(start + k) ? run : rest).push_back(u);
+  }
+  // Contiguous: the run is the first run.size() uses from start.
+  for (size_t k = 0; k < run.size(); ++k)
+    if (!in(start + k)) return false;
+  return run.size() == shared.size();
+}
+
+// Whether every facet edge is used at most twice, once each way (one consistent orientation).
+bool manifold(const std::vector<int32_t>& tris) {
+  std::set<std::pair<int32_t, int32_t>> directed;
+  for (size_t t = 0; t + 2 < tris.size(); t += 3)
+    for (size_t c = 0; c < 3; ++c)
+      if (!directed.insert({tris[t + c], tris[t + (c + 1) % 3]}).second) return false;
+  return true;
+}
+
+// Whether the library takes the merged face: its topology (loops close, edges are facet edges,
+// one outer loop), and its flattening meshes at size h (a strip folded at a kink can flatten onto
+// itself: "the domain's boundary intersects itself") with min Lo lambda kLambdaFloor.
+bool library_takes(const wefm_cad::CadFace& f, double h, std::string& why) {
+  wefm_face* raw = nullptr;
+  if (wefm_face_create(&raw) != WEFM_OK) return why = "out of memory", false;
+  std::unique_ptr<wefm_face, FaceDeleter> handle(raw);
+  std::string error;
+  if (wefm_cad::set_face_from_cad(raw, f, error) != WEFM_OK || wefm_face_build(raw) != WEFM_OK)
+    return why = "topology: " + (error.empty() ? std::string(wefm_face_last_error(raw)) : error), false;
+  const wefm_status st = wefm_face_solve(raw);
+  int32_t has = 0;
+  wefm_face_has_result(raw, &has);
+  if (st != WEFM_OK && !(st == WEFM_ERROR_NOT_CONVERGED && has))
+    return why = std::string("flatten: ") + wefm_face_last_error(raw), false;
+  wefm_mesh_options options;
+  wefm_mesh_options_init(&options, sizeof options);
+  options.size = h;
+  wefm_domain_mesh* dm = nullptr;
+  const wefm_status ms = wefm_face_mesh_domain(raw, &options, &dm);
+  OwnedDomainMesh owned(dm);
+  if (ms != WEFM_OK) return why = std::string("mesh: ") + wefm_face_last_error(raw), false;
+  // A merge is made for the quality floor: one that does not reach it on its own (the narrow face's
+  // short end edges left in a corner of the merged face) is not made.
+  wefm_mesh_report report;
+  wefm_mesh_report_init(&report, sizeof report);
+  if (wefm_domain_mesh_get_report(dm, &report) == WEFM_OK && report.lambda_min < kLambdaFloor) {
+    char text[96];
+    std::snprintf(text, sizeof text, "the merged face meshes with min lambda %.3f", report.lambda_min);
+    return why = text, false;
+  }
+  return true;
+}
+
+// Merges face b into face a across the edges they share (`shared`: pairs of edge index in a, in b).
+// The result keeps a's index and surface type. False + why when the result would not be one valid
+// face (see the checks).
+bool merge_pair(const wefm_cad::CadFace& a, const wefm_cad::CadFace& b, const std::vector<std::pair<size_t, size_t>>& shared,
+                double tol, double h, wefm_cad::CadFace& out, std::string& why) {
+  std::vector<int32_t> vmap(b.xyz.size() / 3, -1);
+  std::set<size_t> sa, sb;
+  std::map<size_t, size_t> a_of_b;
+  for (const auto& [ea, eb] : shared) {
+    bool reversed = false;
+    if (a.edges[ea].seam || b.edges[eb].seam || !same_chain(a, ea, b, eb, tol, reversed)) return why = "shared edge chains differ", false;
+    const auto& ca = a.edges[ea].vertices;
+    const auto& cb = b.edges[eb].vertices;
+    for (size_t k = 0; k < ca.size(); ++k) vmap[static_cast<size_t>(cb[reversed ? ca.size() - 1 - k : k])] = ca[k];
+    sa.insert(ea), sb.insert(eb), a_of_b[eb] = ea;
+  }
+  int la = -1, lb = -1;
+  std::vector<wefm_cad::CadEdgeUse> rest_a, run_a, rest_b, run_b;
+  if (!shared_run(a, sa, la, rest_a, run_a) || !shared_run(b, sb, lb, rest_b, run_b))
+    return why = "shared edges not one run of one loop", false;
+  // The face on the left of both: b walks the run backwards, each edge the other way.
+  for (size_t k = 0; k < run_a.size(); ++k) {
+    const auto& ua = run_a[k];
+    const auto& ub = run_b[run_b.size() - 1 - k];
+    bool reversed = false;
+    same_chain(a, static_cast<size_t>(ua.edge), b, static_cast<size_t>(ub.edge), tol, reversed);
+    if (a_of_b[static_cast<size_t>(ub.edge)] != static_cast<size_t>(ua.edge) || (ua.reversed != ub.reversed) == reversed)
+      return why = "orientations differ", false;
+  }
+  const bool a_outer = la == a.outer_loop, b_outer = lb == b.outer_loop;
+  if (!a_outer && !b_outer) return why = "shared edges on inner loops of both", false;
+  if (a_outer && b_outer && rest_a.empty() && rest_b.empty()) return why = "the merge would have no boundary", false;
+  out = wefm_cad::CadFace{};
+  out.index = a.index;
+  out.surface_type = a.surface_type;
+  out.xyz = a.xyz;
+  for (size_t v = 0; v < vmap.size(); ++v)
+    if (vmap[v] < 0) {
+      vmap[v] = static_cast<int32_t>(out.xyz.size() / 3);
+      out.xyz.insert(out.xyz.end(), at(b, static_cast<int32_t>(v)), at(b, static_cast<int32_t>(v)) + 3);
+    }
+  out.triangles = a.triangles;
+  for (int32_t v : b.triangles) out.triangles.push_back(vmap[static_cast<size_t>(v)]);
+  if (!manifold(out.triangles)) return why = "the merged facets are not a manifold", false;
+  std::vector<int32_t> edge_a(a.edges.size(), -1), edge_b(b.edges.size(), -1);
+  std::set<long long> ids;
+  for (size_t e = 0; e < a.edges.size(); ++e)
+    if (!sa.count(e)) edge_a[e] = static_cast<int32_t>(out.edges.size()), out.edges.push_back(a.edges[e]), ids.insert(a.edges[e].id);
+  for (size_t e = 0; e < b.edges.size(); ++e) {
+    if (sb.count(e)) continue;
+    if (ids.count(b.edges[e].id)) return why = "another edge is on both faces", false;
+    wefm_cad::CadEdge copy = b.edges[e];
+    for (int32_t& v : copy.vertices) v = vmap[static_cast<size_t>(v)];
+    edge_b[e] = static_cast<int32_t>(out.edges.size()), out.edges.push_back(copy);
+  }
+  auto remap = [](std::vector<wefm_cad::CadEdgeUse> uses, const std::vector<int32_t>& m) {
+    for (auto& u : uses) u.edge = m[static_cast<size_t>(u.edge)];
+    return uses;
+  };
+  for (size_t l = 0; l < a.loops.size(); ++l) {
+    if (static_cast<int>(l) != la) {
+      if (static_cast<int>(l) == a.outer_loop) out.outer_loop = static_cast<int>(out.loops.size());
+      out.loops.push_back(remap(a.loops[l], edge_a));
+      continue;
+    }
+    auto spliced = remap(rest_a, edge_a);
+    for (const auto& u : remap(rest_b, edge_b)) spliced.push_back(u);
+    if (spliced.empty()) continue;  // b filled a hole of a exactly
+    if (a_outer && b_outer) out.outer_loop = static_cast<int>(out.loops.size());
+    out.loops.push_back(spliced);
+  }
+  for (size_t l = 0; l < b.loops.size(); ++l) {
+    if (static_cast<int>(l) == lb) continue;
+    if (a_outer && static_cast<int>(l) == b.outer_loop) out.outer_loop = static_cast<int>(out.loops.size());
+    out.loops.push_back(remap(b.loops[l], edge_b));
+  }
+  out.dropped_triangles = a.dropped_triangles + b.dropped_triangles;
+  out.triangulation_kept = a.triangulation_kept && b.triangulation_kept;
+  return library_takes(out, h, why);
+}
+
+// The face's corners sharper than kSharpCornerDegrees: (angle in degrees, the ids of the two model
+// edges meeting there). The angle is the turn of the loop seen along the facets' normal at the
+// corner, so a corner of 350 degrees (a notch) is not taken for one of 10.
+std::vector<std::pair<double, std::array<long long, 2>>> sharp_corners(const wefm_cad::CadFace& f) {
+  std::vector<std::pair<double, std::array<long long, 2>>> out;
+  std::map<int32_t, Normal> normal;  // at the corner vertices: sum of the facet normals around
+  auto chain = [&](const wefm_cad::CadEdgeUse& u) {
+    std::vector<int32_t> c = f.edges[static_cast<size_t>(u.edge)].vertices;
+    if (u.reversed) std::reverse(c.begin(), c.end());
+    return c;
+  };
+  for (const auto& loop : f.loops)
+    for (const auto& u : loop) normal[chain(u).front()] = {0, 0, 0};
+  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
+    for (size_t c = 0; c < 3; ++c) {
+      const auto it = normal.find(f.triangles[3 * t + c]);
+      if (it == normal.end()) continue;
+      const Normal n = facet_normal(f, t);
+      for (size_t k = 0; k < 3; ++k) it->second[k] += n[k];
+    }
+  for (const auto& loop : f.loops)
+    for (size_t k = 0; k < loop.size(); ++k) {
+      // A pole (a degenerate edge) between two edges is a corner of the two: a patch narrowing to
+      // a point.
+      size_t next = (k + 1) % loop.size();
+      if (f.edges[static_cast<size_t>(loop[next].edge)].vertices.size() < 2) next = (next + 1) % loop.size();
+      const auto in = chain(loop[k]), out_chain = chain(loop[next]);
+      if (in.size() < 2 || out_chain.size() < 2 || in.back() != out_chain.front()) continue;
+      const double *p = at(f, in[in.size() - 2]), *q = at(f, in.back()), *r = at(f, out_chain[1]);
+      const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, b[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
+      const Normal& n = normal[in.back()];
+      const double cross = (a[1] * b[2] - a[2] * b[1]) * n[0] + (a[2] * b[0] - a[0] * b[2]) * n[1] + (a[0] * b[1] - a[1] * b[0]) * n[2];
+      const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(nn > 0)) continue;
+      const double angle = 180 - std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180 / kPi;
+      if (angle < kSharpCornerDegrees)
+        out.push_back({angle, {f.edges[static_cast<size_t>(loop[k].edge)].id, f.edges[static_cast<size_t>(loop[next].edge)].id}});
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Per model edge id: the faces (by position) whose loops use it, once per use.
+std::map<long long, std::vector<size_t>> edge_users(const std::vector<wefm_cad::CadFace>& faces, const std::vector<char>& alive) {
+  std::map<long long, std::vector<size_t>> out;
+  for (size_t i = 0; i < faces.size(); ++i)
+    if (alive[i])
+      for (const auto& loop : faces[i].loops)
+        for (const auto& u : loop) out[faces[i].edges[static_cast<size_t>(u.edge)].id].push_back(i);
+  return out;
+}
+
+struct Candidate {
+  size_t neighbour;
+  std::vector<std::pair<size_t, size_t>> shared;  // edge index in the neighbour, in the narrow face
+  std::vector<long long> ids;
+  double dihedral;
+};
+
+// The neighbours of face i it could merge with: across edges used once by i and once by the
+// neighbour and by no other face, smoothest first; sharp ones left out.
+std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, size_t i,
+                                  const std::map<long long, std::vector<size_t>>& users, double tol) {
+  std::map<size_t, Candidate> by_face;
+  const wefm_cad::CadFace& f = faces[i];
+  for (size_t e = 0; e < f.edges.size(); ++e) {
+    const auto it = users.find(f.edges[e].id);
+    if (it == users.end() || it->second.size() != 2) continue;
+    const size_t j = it->second[0] == i ? it->second[1] : it->second[0];
+    if (j == i) continue;
+    const wefm_cad::CadFace& g = faces[j];
+    for (size_t d = 0; d < g.edges.size(); ++d) {
+      if (g.edges[d].id != f.edges[e].id) continue;
+      bool reversed = false;
+      if (!same_chain(g, d, f, e, tol, reversed)) continue;
+      Candidate& c = by_face.emplace(j, Candidate{j, {}, {}, 0}).first->second;
+      c.shared.push_back({d, e});
+      c.ids.push_back(f.edges[e].id);
+      c.dihedral = std::max(c.dihedral, dihedral(g, d, f, e, reversed));
+    }
+  }
+  std::vector<Candidate> out;
+  for (auto& [j, c] : by_face)
+    if (c.dihedral <= kSharpDegrees) out.push_back(std::move(c));
+  std::sort(out.begin(), out.end(), [](const Candidate& x, const Candidate& y) { return x.dihedral < y.dihedral; });
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+// The merges of one model, applied one after the other to its faces.
+class Merger {
+ public:
+  Merger(wefm_cad::CadModel& model, std::vector<double>& sizes, double h)
+      : faces_(model.faces), sizes_(sizes), tol_(1e-7 * model.bbox_diagonal), h_(h), alive_(faces_.size(), 1),
+        facet_face_(faces_.size()) {
+    users_ = edge_users(faces_, alive_);
+  }
+  bool alive(size_t i) const { return alive_[i] && faces_[i].error.empty(); }
+  const wefm_cad::CadFace& face(size_t i) const { return faces_[i]; }
+  bool narrow(size_t i) const { return wefm_cad::face_width(faces_[i]) < h_ / kNarrowRatio; }
+
+  // Merges face i into the smoothest neighbour across one of `across` (model edge ids; empty: any
+  // edge) that makes a valid face and is not narrow itself (two needles merged are a needle, its
+  // slivers only moved); the merged face keeps the neighbour's size (the smaller of the
+  // two multiplied the triangles of a whole model several times over for a few absorbed corners).
+  // Records the merge, or why none was made.
+  bool merge(size_t i, const std::set<long long>& across, double max_turn, double width, const std::string& reason) {
+    std::string why = "no neighbour across an edge turning by at most " + std::to_string(static_cast<int>(max_turn)) + " degrees";
+    for (const Candidate& c : neighbours(faces_, i, users_, tol_)) {
+      if (c.dihedral > max_turn) continue;
+      if (!across.empty() && std::none_of(c.ids.begin(), c.ids.end(), [&](long long id) { return across.count(id) > 0; })) continue;
+      const size_t j = c.neighbour;
+      if (narrow(j)) {
+        why = "its smooth neighbours are narrow too";
+        continue;
+      }
+      wefm_cad::CadFace merged;
+      if (!faces_[j].error.empty() || !merge_pair(faces_[j], faces_[i], c.shared, tol_, j < sizes_.size() ? sizes_[j] : h_, merged, why)) continue;
+      for (size_t k : {i, j})
+        if (facet_face_[k].empty()) facet_face_[k].assign(faces_[k].triangles.size() / 3, faces_[k].index);
+      facet_face_[j].insert(facet_face_[j].end(), facet_face_[i].begin(), facet_face_[i].end());
+      vt_.merges.push_back({faces_[i].index, faces_[j].index, width, c.dihedral, c.ids, reason});
+      for (const auto& e : faces_[i].edges) {
+        auto& list = users_[e.id];
+        std::replace(list.begin(), list.end(), i, j);
+      }
+      for (long long id : c.ids) users_.erase(id);
+      faces_[j] = std::move(merged);
+      alive_[i] = 0;
+      return true;
+    }
+    vt_.merges.push_back({faces_[i].index, 0, width, 0, {}, reason + "; kept: " + why});
+    return false;
+  }
+
+  // The merged faces in place of the originals; the merges name the face each ended in.
+  VirtualTopology finish() {
+    if (std::none_of(vt_.merges.begin(), vt_.merges.end(), [](const FaceMerge& m) { return m.into; })) return std::move(vt_);
+    std::map<int, int> final_of;  // a face absorbed into one absorbed later names the last
+    for (auto it = vt_.merges.rbegin(); it != vt_.merges.rend(); ++it) {
+      if (!it->into) continue;
+      const auto f = final_of.find(it->into);
+      final_of[it->face] = f == final_of.end() ? it->into : f->second;
+    }
+    for (FaceMerge& m : vt_.merges)
+      if (m.into) m.into = final_of[m.face];
+    std::vector<wefm_cad::CadFace> kept;
+    std::vector<double> sizes;
+    for (size_t i = 0; i < faces_.size(); ++i)
+      if (alive_[i]) {
+        kept.push_back(std::move(faces_[i]));
+        vt_.facet_face.push_back(std::move(facet_face_[i]));
+        if (i < sizes_.size()) sizes.push_back(sizes_[i]);
+      }
+    faces_ = std::move(kept);
+    sizes_ = std::move(sizes);
+    return std::move(vt_);
+  }
+
+ private:
+  std::vector<wefm_cad::CadFace>& faces_;
+  std::vector<double>& sizes_;
+  double tol_, h_;
+  std::vector<char> alive_;
+  std::vector<std::vector<int>> facet_face_;
+  std::map<long long, std::vector<size_t>> users_;
+  VirtualTopology vt_;
+};
+
+}  // namespace
+
+VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vector<double>& face_sizes) {
+  Merger merger(model, face_sizes, h);
+  const size_t n = model.faces.size();
+  std::vector<std::pair<double, size_t>> narrow;
+  for (size_t i = 0; i < n; ++i) {
+    const double w = merger.alive(i) ? wefm_cad::face_width(merger.face(i)) : 0;
+    if (w > 0 && w < h / kNarrowRatio) narrow.push_back({w, i});
+  }
+  std::sort(narrow.begin(), narrow.end());
+  for (const auto& [w0, i] : narrow) {
+    const double w = merger.alive(i) ? wefm_cad::face_width(merger.face(i)) : 0;  // it may have absorbed a narrower one
+    if (!(w < h / kNarrowRatio)) continue;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "narrow: width %.3g below h / %g", w, kNarrowRatio);
+    merger.merge(i, {}, kSharpDegrees, w, reason);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!merger.alive(i)) continue;
+    const auto corners = sharp_corners(merger.face(i));
+    if (corners.empty()) continue;
+    char reason[96];
+    std::snprintf(reason, sizeof reason, "sharp corner: %.1f degrees below %g", corners[0].first, kSharpCornerDegrees);
+    merger.merge(i, {corners[0].second[0], corners[0].second[1]}, kCornerSharpDegrees, wefm_cad::face_width(merger.face(i)), reason);
+  }
+  return merger.finish();
+}
+
+std::vector<int> triangle_faces(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
+                                const std::vector<double>& xyz, const std::vector<int32_t>& tris, double h) {
+  if (virtual_face >= vt.facet_face.size() || vt.facet_face[virtual_face].empty()) return {};
+  const std::vector<int>& source = vt.facet_face[virtual_face];
+  // The absorbed faces' facets, with their bounding box grown by h / 2: a triangle's centroid over
+  // one of them (its projection inside, at most h / 2 off) goes to that face, any other to `face`.
+  std::map<int, std::vector<size_t>> facets;
+  for (size_t t = 0; t < source.size(); ++t)
+    if (source[t] != face.index) facets[source[t]].push_back(t);
+  const double reach = 0.5 * h;
+  auto over = [&](const double* p, size_t t) {
+    const double *a = at(face, face.triangles[3 * t]), *b = at(face, face.triangles[3 * t + 1]), *c = at(face, face.triangles[3 * t + 2]);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    const double vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    const double wu = w[0] * u[0] + w[1] * u[1] + w[2] * u[2], wv = w[0] * v[0] + w[1] * v[1] + w[2] * v[2];
+    const double det = uu * vv - uv * uv;
+    if (!(det > 0)) return false;
+    const double s = (vv * wu - uv * wv) / det, r = (uu * wv - uv * wu) / det;
+    if (s < -1e-9 || r < -1e-9 || s + r > 1 + 1e-9) return false;
+    const double q[3] = {a[0] + s * u[0] + r * v[0] - p[0], a[1] + s * u[1] + r * v[1] - p[1], a[2] + s * u[2] + r * v[2] - p[2]};
+    return std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]) <= reach;
+  };
+  std::vector<int> out;
+  for (size_t t = 0; t + 2 < tris.size(); t += 3) {
+    double c[3];
+    for (size_t k = 0; k < 3; ++k)
+      c[k] = (xyz[3 * static_cast<size_t>(tris[t]) + k] + xyz[3 * static_cast<size_t>(tris[t + 1]) + k] + xyz[3 * static_cast<size_t>(tris[t + 2]) + k]) / 3;
+    int tag = face.index;
+    for (const auto& [g, list] : facets)
+      if (std::any_of(list.begin(), list.end(), [&](size_t f) { return over(c, f); })) {
+        tag = g;
+        break;
+      }
+    out.push_back(tag);
+  }
+  return out;
+}
+
+nlohmann::ordered_json merges_json(const VirtualTopology& vt) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const FaceMerge& m : vt.merges)
+    out.push_back({{"face", m.face}, {"merged_into", m.into ? nlohmann::ordered_json(m.into) : nullptr}, {"reason", m.reason}, {"width", m.width},
+                   {"dihedral_degrees", m.dihedral}, {"shared_edges", m.shared_edges}});
+  return out;
+}
+
+std::vector<int> merged_into(const VirtualTopology& vt, int face) {
+  std::vector<int> out;
+  for (const FaceMerge& m : vt.merges)
+    if (m.into == face) out.push_back(m.face);
+  return out;
+}
+
+}  // namespace wefm_cli

@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""`wefm mesh-model` merges faces far narrower than the element size with a neighbour for meshing
+(virtual topology, issue 28 item 4: a quality floor on narrow faces), at 1/40 of the diagonal.
+
+fillet_chamfer_box.brep (tests/cad/data): a 10 x 6 x 4 box with one edge rounded at radius 0.003 and
+another chamfered at 0.0007, about h / 70 and h / 300 wide at h = 1/40 of the diagonal (the fillet
+meshes well on its own and is left alone, the chamfer does not and is merged); made with Gmsh 4.8
+(OpenCASCADE factory):
+    Box(1) = {0, 0, 0, 10, 6, 4}; f() = Fillet{1}{1}{0.003}; c() = Chamfer{f(0)}{12}{6}{0.0007};
+    Save "fillet_chamfer_box.brep";
+
+Checked: with --no-merge-faces the narrow faces keep slivers (min Lo lambda below 0.3: the model does
+exercise the property); by default the run exits 0, min lambda is at least 0.3, the mesh is closed
+(every edge of the written MSH used by exactly two triangles, as a closed solid's are), every
+triangle is in the group of a face of the model, and the report names each merge (the face, the face
+it was merged into, the shared model edges, why) on both the merge list and the receiving face.
+
+usage: merge_faces_test.py WEFM MODEL.brep
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from collections import Counter
+
+from model_mesh_test import read_msh_faces
+
+
+def run(wefm, model, tmp, name, *extra):
+    msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
+    p = subprocess.run([wefm, "mesh-model", model, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q", *extra],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, f"{name}: exit {p.returncode}\n{p.stderr[-2000:]}"
+    return json.load(open(rep)), msh
+
+
+def main():
+    wefm, model = sys.argv[1:3]
+    with tempfile.TemporaryDirectory() as tmp:
+        strict, _ = run(wefm, model, tmp, "strict", "--no-merge-faces")
+        assert strict["merged_faces"] == [], strict["merged_faces"]
+        assert strict["lambda_min"] < 0.3, f"the narrow faces mesh well on their own (min {strict['lambda_min']}): no test"
+        all_faces = {f["face"] for f in strict["faces"]}
+
+        r, msh = run(wefm, model, tmp, "merged")
+        assert r["lambda_min"] >= 0.3, f"min lambda {r['lambda_min']} with merging"
+        c = r["conformity"]
+        assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0 and c["zero_area_triangles"] == 0, c
+        faces, _ = read_msh_faces(msh)
+        uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for tris in faces.values() for t in tris for i in range(3))
+        assert set(uses.values()) == {2}, f"open or non-manifold edges: {Counter(uses.values())}"
+        assert set(faces) <= all_faces, f"triangles in groups that are no face: {set(faces) - all_faces}"
+
+        merges = [m for m in r["merged_faces"] if m["merged_into"]]
+        assert merges, f"expected the chamfer merged: {merges}"
+        kept = {f["face"]: f for f in r["faces"]}
+        for m in merges:
+            assert m["face"] in all_faces and m["merged_into"] in kept and m["face"] not in kept, m
+            assert m["shared_edges"] and m["reason"].startswith("narrow") and m["dihedral_degrees"] <= 50, m
+            assert m["face"] in kept[m["merged_into"]]["merged_faces"], (m, kept[m["merged_into"]])
+        print(f"min lambda {strict['lambda_min']:.3f} -> {r['lambda_min']:.3f}; merged "
+              + ", ".join(f"f{m['face']} into f{m['merged_into']} ({m['dihedral_degrees']:.0f} deg)" for m in merges))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
