@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 #include "laplacian_floor.hpp"
-#include "obj_output.hpp"
+#include "mesh_formats.hpp"
 #include "process_stats.hpp"
 #include "wefm/wefm.h"
 
@@ -208,18 +208,20 @@ Json run_io_case(Shape shape, int64_t size, const std::string& work_dir) {
   }
   wefm_mesh_release(mesh);
   // The tool's UV OBJ: one vt per vertex (a disk has one use per vertex), f v/vt.
-  wefm_cli::FaceSnapshot snap;
-  snap.xyz = f.xyz;
-  snap.tris = f.tri;
-  snap.tri_uses = f.tri;
-  snap.uv.resize(2 * static_cast<size_t>(f.vertices()));
+  std::vector<double> uv_values(2 * static_cast<size_t>(f.vertices()));
   for (size_t v = 0; v < static_cast<size_t>(f.vertices()); ++v) {
-    snap.uv[2 * v] = f.xyz[3 * v] * 1.0000001;
-    snap.uv[2 * v + 1] = f.xyz[3 * v + 1] * 0.9999999;
+    uv_values[2 * v] = f.xyz[3 * v] * 1.0000001;
+    uv_values[2 * v + 1] = f.xyz[3 * v + 1] * 0.9999999;
   }
+  wefm_cli::MeshDescription layout;
+  layout.xyz = f.xyz;
+  layout.elements = f.tri;
+  layout.corner_uv = f.tri;
+  layout.uv = uv_values;
+  layout.groups = {{1, "face_1"}};
   timed("write_uv_obj", [&] {
     std::string error;
-    if (wefm_cli::write_uv_obj(uv, obj, snap, error) != 0) status = "UV OBJ: " + error;
+    if (wefm_cli::write_mesh(uv, wefm_cli::MeshFormat::obj, layout, error) != 0) status = "UV OBJ: " + error;
   });
   j["uv_obj_mb"] = file_mb(uv);
   j["status"] = status;

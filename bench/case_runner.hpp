@@ -19,7 +19,7 @@ Json run_wefm_case(Shape shape, int64_t size, double s, int threads);
 Json run_floor_case(Shape shape, int64_t size, bool complex_arithmetic);
 
 // File I/O on the face, in `work_dir` (page cache warm): OBJ and binary STL reading through
-// wefm_mesh_read, and the UV OBJ the `wefm` tool writes (its own writer, apps/wefm/obj_output.cpp).
+// wefm_mesh_read, and the UV OBJ the `wefm` tool writes (its own writer, apps/wefm/mesh_formats.cpp).
 Json run_io_case(Shape shape, int64_t size, const std::string& work_dir);
 
 }  // namespace wefm_bench
