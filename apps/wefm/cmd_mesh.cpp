@@ -118,28 +118,67 @@ int write_domain_mesh(const std::string& path, const MeshArrays& m, std::string&
   return write_mesh(path, format, d, error);
 }
 
-// Elements coloured from red (lambda 0.6 or less) to green (1); quads by their worse half.
+// Lo's lambda of an element in 3D; a quad by its worse half.
+double element_lambda(const MeshArrays& m, size_t e) {
+  const int32_t* n = &m.elements[e];
+  auto X = [&](int k) { return &m.xyz[3 * static_cast<size_t>(n[k])]; };
+  double lam = lo_lambda(X(0), X(1), X(2));
+  if (m.npe == 4) lam = std::min(lam, lo_lambda(X(0), X(2), X(3)));
+  return lam;
+}
+
+// Red at lambda 0.6 or less to green at 1.
+std::string lambda_colour(double lam) {
+  const double t = std::min(1.0, std::max(0.0, (lam - 0.6) / 0.4));
+  return "rgb(" + std::to_string(static_cast<int>(255 * (1 - t))) + ',' + std::to_string(static_cast<int>(200 * t + 55)) + ",80)";
+}
+
+// The colour scale and the counts behind it, to the right of the mesh at x0.
+void mesh_svg_legend(std::ostringstream& f, double x0, size_t elements, double lam_min, size_t below) {
+  constexpr double top = 40, bar = 200;
+  f << "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"12\">\n"
+    << "<text x=\"" << x0 << "\" y=\"20\">Lo's lambda in 3D</text>\n";
+  constexpr int steps = 8;  // stacked bands: the same colours the elements get
+  for (int i = 0; i < steps; ++i) {
+    const double lam = 1.0 - 0.4 * (i + 0.5) / steps;
+    f << "<rect x=\"" << x0 << "\" y=\"" << top + bar * i / steps << "\" width=\"24\" height=\"" << bar / steps
+      << "\" fill=\"" << lambda_colour(lam) << "\"/>\n";
+  }
+  const char* labels[] = {"1.0", "0.8", "0.6 or less"};
+  for (int i = 0; i < 3; ++i)
+    f << "<text x=\"" << x0 + 30 << "\" y=\"" << top + bar * i / 2 + 4 << "\">" << labels[i] << "</text>\n";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%zu %s, min lambda %.3f", elements, "elements", lam_min);
+  f << "<text x=\"" << x0 << "\" y=\"" << top + bar + 24 << "\">" << buf << "</text>\n";
+  std::snprintf(buf, sizeof buf, "%zu below 0.6 (%.2f%%)", below, elements ? 100.0 * static_cast<double>(below) / static_cast<double>(elements) : 0.0);
+  f << "<text x=\"" << x0 << "\" y=\"" << top + bar + 42 << "\">" << buf << "</text>\n</g>\n";
+}
+
+// The 2D domain mesh, each element coloured by its Lo's lambda in 3D, with a legend.
 int write_mesh_svg(const std::string& path, const MeshArrays& m, std::string& error) {
+  constexpr double kLegendWidth = 220;
   double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
   for (size_t i = 0; i + 1 < m.uv.size(); i += 2)
     for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], m.uv[i + static_cast<size_t>(k)]), hi[k] = std::max(hi[k], m.uv[i + static_cast<size_t>(k)]);
   const double w = std::max(hi[0] - lo[0], 1e-300), h = std::max(hi[1] - lo[1], 1e-300), scale = 1000.0 / std::max(w, h);
   std::ostringstream f;
-  f << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w * scale + 20 << "\" height=\"" << h * scale + 20 << "\">\n";
+  f << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w * scale + 30 + kLegendWidth << "\" height=\""
+    << std::max(h * scale + 20, 300.0) << "\">\n";
   const size_t npe = static_cast<size_t>(m.npe);
+  double lam_min = 1;
+  size_t below = 0;
   for (size_t e = 0; e < m.elements.size(); e += npe) {
-    const int32_t* n = &m.elements[e];
-    auto X = [&](int k) { return &m.xyz[3 * static_cast<size_t>(n[k])]; };
-    double lam = lo_lambda(X(0), X(1), X(2));
-    if (npe == 4) lam = std::min(lam, lo_lambda(X(0), X(2), X(3)));
-    const double t = std::min(1.0, std::max(0.0, (lam - 0.6) / 0.4));
-    f << "<polygon fill=\"rgb(" << static_cast<int>(255 * (1 - t)) << ',' << static_cast<int>(200 * t + 55) << ",80)\" stroke=\"black\" stroke-width=\"0.3\" points=\"";
+    const double lam = element_lambda(m, e);
+    lam_min = std::min(lam_min, lam);
+    below += lam < 0.6;
+    f << "<polygon fill=\"" << lambda_colour(lam) << "\" stroke=\"black\" stroke-width=\"0.3\" points=\"";
     for (size_t k = 0; k < npe; ++k) {
-      const size_t v = static_cast<size_t>(n[k]);
+      const size_t v = static_cast<size_t>(m.elements[e + k]);
       f << 10 + (m.uv[2 * v] - lo[0]) * scale << ',' << 10 + (hi[1] - m.uv[2 * v + 1]) * scale << ' ';
     }
     f << "\"/>\n";
   }
+  mesh_svg_legend(f, w * scale + 30, m.elements.size() / std::max<size_t>(npe, 1), lam_min, below);
   f << "</svg>\n";
   return write_file_atomically(path, f.str(), error);
 }

@@ -579,8 +579,13 @@ def case_mesh(tmp):
     _, F = read_faces(pout)
     check(m["nodes_per_element"] == 3 and m["elements"] == len(F) and all(len(f) == 3 for f in F), f"free mesh {m}")
     check(m["lambda_min"] >= 0.5 and m["lambda_mesh"] >= 0.9, f"free mesh quality {m}")
-    polys = ET.parse(psvg).getroot().findall(f"{SVG_NS}polygon")
+    root = ET.parse(psvg).getroot()
+    polys = root.findall(f"{SVG_NS}polygon")
     check(len(polys) == len(F), f"svg has {len(polys)} polygons for {len(F)} triangles")
+    legend = [g for g in root.findall(f"{SVG_NS}g") if g.get("id") == "legend"]
+    texts = " ".join(t.text or "" for g in legend for t in g.iter(f"{SVG_NS}text"))
+    check(len(legend) == 1 and "lambda" in texts and f"{len(F)} elements" in texts and
+          f"min lambda {m['lambda_min']:.3f}" in texts, f"svg legend: {texts!r}")
     # Usage errors.
     run("mesh", psrc, "-o", pout, expect=2)  # no --size
     run("mesh", psrc, "--size", 0.1, "--type", "paved", "-o", pout, expect=2)
