@@ -1,7 +1,9 @@
 // The host's permissions to change settings of the whole process (wefm.h, "Process." and
 // wefm_process_policy). Everything is hands off until a key is set.
+#include <cstring>
 #include <mutex>
 #include <string>
+#include <type_traits>
 
 #include "handles.hpp"
 #include "wefm/core/linalg/sparse_cholesky.hpp"
@@ -23,6 +25,14 @@ void require_range(int key, std::int64_t value, std::int64_t max) {
     wefm::fail(wefm::Errc::invalid_argument, describe(key, value) + ": the value must be 0 .. " + std::to_string(max));
 }
 
+// The key as the integer the caller passed. A C caller may pass any int; in C++ a value outside the
+// enum's range must not be read as the enum type, so its bytes are read as its underlying type.
+int key_value(const wefm_process_policy& key) {
+  std::underlying_type_t<wefm_process_policy> v;
+  std::memcpy(&v, &key, sizeof v);
+  return static_cast<int>(v);
+}
+
 }  // namespace
 
 extern "C" {
@@ -32,8 +42,8 @@ WEFM_API wefm_status wefm_set_process_policy(wefm_process_policy key, int64_t va
     // Two hosts' threads setting keys at once apply them one after the other.
     static std::mutex mutex;
     const std::lock_guard<std::mutex> lock(mutex);
-    const int k = static_cast<int>(key);
-    switch (key) {
+    const int k = key_value(key);
+    switch (k) {
       case WEFM_PROCESS_BLAS_THREADS:
         require_range(k, value, kMaxBlasThreads);
         if (!wefm::set_solve_blas_threads(static_cast<int>(value)))
@@ -51,7 +61,8 @@ WEFM_API wefm_status wefm_set_process_policy(wefm_process_policy key, int64_t va
 WEFM_API wefm_status wefm_get_process_policy(wefm_process_policy key, int64_t* value) {
   WEFM_REQUIRE(value, "wefm_get_process_policy");
   return guarded(nullptr, [&] {
-    switch (key) {
+    const int k = key_value(key);
+    switch (k) {
       case WEFM_PROCESS_BLAS_THREADS:
         *value = wefm::solve_blas_threads();
         return;
@@ -59,7 +70,7 @@ WEFM_API wefm_status wefm_get_process_policy(wefm_process_policy key, int64_t* v
         *value = wefm::huge_pages_enabled() ? 1 : 0;
         return;
     }
-    wefm::fail(wefm::Errc::invalid_argument, "wefm_get_process_policy: unknown key " + std::to_string(static_cast<int>(key)));
+    wefm::fail(wefm::Errc::invalid_argument, "wefm_get_process_policy: unknown key " + std::to_string(k));
   });
 }
 
