@@ -719,6 +719,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   }
   const double time_faces = since(t_faces);
 
+  const auto t_weld = Clock::now();
   ModelMesh whole(weld_tolerance);
   int64_t collapsed = 0;
   for (size_t i = 0; i < runs.size(); ++i)
@@ -735,13 +736,18 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     for (const auto& loop : f.loops)
       for (const wefm_cad::CadEdgeUse& u : loop) ++face_uses[f.edges[static_cast<size_t>(u.edge)].id];
   for (const auto& [id, en] : edge_nodes) whole.expect_model_edge(en.xyz, face_uses[id]);
+  const double time_weld = since(t_weld);
+  const auto t_check = Clock::now();
   const ConformityCounts conf = whole.conformity();
   const LambdaStats q = whole.lambda();
+  const double time_check = since(t_check);
+  const auto t_write = Clock::now();
   int exit_code = kExitOk;
   if (!make_parent_dirs(out_path, error) || write_mesh(out_path, format, whole.description(), error) != kExitOk) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     exit_code = kExitIo;
   }
+  const double time_write = since(t_write);
   const double time_total = since(t_start);
 
   std::printf("%-6s %-10s %8s %9s %8s %8s %9s %8s  %s\n", "face", "surface", "elements", "lambda", "min", "<0.6", "score",
@@ -756,12 +762,12 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     exit_code = std::max(exit_code, r.exit_code);
   }
   std::printf("model: %lld nodes, %lld triangles, lambda_mesh %.4f, min lambda %.4f, %.1f%% below 0.6; %lld edges, "
-              "%lld open, %lld non-manifold (%lld, %lld not explained by the B-rep); %d faces failed; %.2f s (read %.2f, BRepMesh %.2f, edges %.3f, faces %.2f with -j %zu)\n",
+              "%lld open, %lld non-manifold (%lld, %lld not explained by the B-rep); %d faces failed; %.2f s (read %.2f, BRepMesh %.2f, edges %.3f, faces %.2f with -j %zu, weld %.2f, check %.2f, write %.2f)\n",
               static_cast<long long>(whole.nodes()), static_cast<long long>(whole.triangles()), q.lambda_mesh, q.lambda_min,
               100 * q.fraction_below_0_6, static_cast<long long>(conf.edges), static_cast<long long>(conf.open_edges),
               static_cast<long long>(conf.non_manifold_edges), static_cast<long long>(conf.unexplained_open_edges),
               static_cast<long long>(conf.unexplained_non_manifold_edges), failed, time_total, model.time_read, model.time_mesh, time_edges,
-              time_faces, n_threads);
+              time_faces, n_threads, time_weld, time_check, time_write);
   for (const FaceMeshRun& r : runs)
     if (!r.reason.empty())
       std::fprintf(stderr, "wefm: %s face %d (%s): %s\n", model_path.c_str(), r.face->index, r.face->surface_type.c_str(),
@@ -799,7 +805,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
                          {"defect_edges", defect_edges_json(conf)},
                          {"collapsed_triangles", collapsed}};
     rep["timings"] = {{"total", time_total}, {"read", model.time_read}, {"brepmesh", model.time_mesh},
-                      {"import", model.time_extract}, {"edges", time_edges}, {"faces_wall", time_faces}, {"jobs", n_threads}};
+                      {"import", model.time_extract}, {"edges", time_edges}, {"faces_wall", time_faces}, {"jobs", n_threads},
+                      {"weld", time_weld}, {"check", time_check}, {"write", time_write}};
     Json faces = Json::array();
     for (const FaceMeshRun& r : runs) {
       const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);

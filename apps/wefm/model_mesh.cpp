@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <unordered_set>
 
 namespace wefm_cli {
 
@@ -18,6 +20,54 @@ uint64_t pair_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
   return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
 }
+
+// Every edge of a triangle list with the triangles that use it: per edge (a, b), a < b, its uses in
+// triangle order, the edges grouped by their smaller node. The model-wide checks walk this once
+// instead of hashing every edge of every triangle.
+class EdgeTable {
+ public:
+  EdgeTable(size_t nodes, const std::vector<int32_t>& tris) : start_(nodes + 1, 0) {
+    for (size_t t = 0; t + 2 < tris.size(); t += 3)
+      for (size_t c = 0; c < 3; ++c) ++start_[static_cast<size_t>(std::min(tris[t + c], tris[t + (c + 1) % 3])) + 1];
+    for (size_t v = 0; v < nodes; ++v) start_[v + 1] += start_[v];
+    uses_.resize(start_[nodes]);
+    std::vector<size_t> fill(start_.begin(), start_.end() - 1);
+    for (size_t t = 0; t + 2 < tris.size(); t += 3)
+      for (size_t c = 0; c < 3; ++c) {
+        const int32_t a = tris[t + c], b = tris[t + (c + 1) % 3];
+        uses_[fill[static_cast<size_t>(std::min(a, b))]++] = {std::max(a, b), static_cast<int32_t>(t / 3)};
+      }
+    // Within a node's group by the other node; the triangles of one edge stay in order.
+    for (size_t v = 0; v < nodes; ++v)
+      std::sort(uses_.begin() + static_cast<std::ptrdiff_t>(start_[v]), uses_.begin() + static_cast<std::ptrdiff_t>(start_[v + 1]));
+  }
+
+  // Calls f(a, b, first, last) once per edge, [first, last) its uses (.second: the triangle).
+  template <class F>
+  void for_each(F f) const {
+    for (size_t a = 0; a + 1 < start_.size(); ++a)
+      for (size_t k = start_[a]; k < start_[a + 1];) {
+        size_t e = k + 1;
+        while (e < start_[a + 1] && uses_[e].first == uses_[k].first) ++e;
+        f(static_cast<int32_t>(a), uses_[k].first, uses_.data() + k, uses_.data() + e);
+        k = e;
+      }
+  }
+
+  // How many triangles use the edge (a, b).
+  int uses(int32_t a, int32_t b) const {
+    if (a > b) std::swap(a, b);
+    const auto first = uses_.begin() + static_cast<std::ptrdiff_t>(start_[static_cast<size_t>(a)]);
+    const auto last = uses_.begin() + static_cast<std::ptrdiff_t>(start_[static_cast<size_t>(a) + 1]);
+    const auto lo = std::lower_bound(first, last, std::make_pair(b, std::numeric_limits<int32_t>::min()));
+    const auto hi = std::lower_bound(lo, last, std::make_pair(b, std::numeric_limits<int32_t>::max()));
+    return static_cast<int>(hi - lo);
+  }
+
+ private:
+  std::vector<size_t> start_;
+  std::vector<std::pair<int32_t, int32_t>> uses_;  // (larger node, triangle)
+};
 
 // Lo's quality: 4 sqrt(3) area / sum of squared edge lengths (1 for an equilateral triangle).
 double lo_lambda(const double* a, const double* b, const double* c) {
@@ -41,22 +91,71 @@ constexpr size_t kListedDefects = 20;
 
 }  // namespace
 
-uint64_t PointGrid::key(const double* p, int di, int dj, int dk) const {
-  return cell_key(static_cast<int64_t>(std::floor(p[0] / tol_)) + di, static_cast<int64_t>(std::floor(p[1] / tol_)) + dj,
-                  static_cast<int64_t>(std::floor(p[2] / tol_)) + dk);
+namespace {
+
+// Spreads a cell key over the table's slots (the keys of neighbouring cells differ in few bits).
+size_t spread(uint64_t key) {
+  key ^= key >> 33;
+  key *= 0xff51afd7ed558ccdULL;
+  key ^= key >> 33;
+  return static_cast<size_t>(key);
 }
 
-void PointGrid::add(const double* p, int32_t id) { cells_.emplace(key(p, 0, 0, 0), id); }
+}  // namespace
+
+size_t PointGrid::slot(uint64_t key) const {
+  const size_t mask = keys_.size() - 1;
+  size_t s = spread(key) & mask;
+  while (first_[s] >= 0 && keys_[s] != key) s = (s + 1) & mask;
+  return s;
+}
+
+void PointGrid::grow() {
+  const std::vector<uint64_t> keys = std::move(keys_);
+  const std::vector<int32_t> first = std::move(first_), last = std::move(last_);
+  const size_t n = std::max<size_t>(64, 2 * keys.size());
+  keys_.assign(n, 0);
+  first_.assign(n, -1);
+  last_.assign(n, -1);
+  for (size_t k = 0; k < keys.size(); ++k)
+    if (first[k] >= 0) {
+      const size_t s = slot(keys[k]);
+      keys_[s] = keys[k];
+      first_[s] = first[k];
+      last_[s] = last[k];
+    }
+}
+
+void PointGrid::add(const double* p, int32_t id) {
+  if (2 * (cells_ + 1) > keys_.size()) grow();
+  const uint64_t key = cell_key(static_cast<int64_t>(std::floor(p[0] / tol_)), static_cast<int64_t>(std::floor(p[1] / tol_)),
+                                static_cast<int64_t>(std::floor(p[2] / tol_)));
+  const size_t s = slot(key);
+  const auto entry = static_cast<int32_t>(ids_.size());
+  ids_.push_back(id);
+  next_.push_back(-1);
+  if (first_[s] < 0) {
+    keys_[s] = key;
+    first_[s] = entry;
+    ++cells_;
+  } else {
+    next_[static_cast<size_t>(last_[s])] = entry;
+  }
+  last_[s] = entry;
+}
 
 int32_t PointGrid::find(const double* p, const std::vector<double>& xyz) const {
-  for (int di = -1; di <= 1; ++di)
-    for (int dj = -1; dj <= 1; ++dj)
-      for (int dk = -1; dk <= 1; ++dk) {
-        auto range = cells_.equal_range(key(p, di, dj, dk));
-        for (auto it = range.first; it != range.second; ++it) {
-          const double* q = &xyz[3 * static_cast<size_t>(it->second)];
-          if (std::fabs(p[0] - q[0]) <= tol_ && std::fabs(p[1] - q[1]) <= tol_ && std::fabs(p[2] - q[2]) <= tol_)
-            return it->second;
+  if (keys_.empty()) return -1;
+  const int64_t i = static_cast<int64_t>(std::floor(p[0] / tol_)), j = static_cast<int64_t>(std::floor(p[1] / tol_)),
+                k = static_cast<int64_t>(std::floor(p[2] / tol_));
+  for (int64_t di = -1; di <= 1; ++di)
+    for (int64_t dj = -1; dj <= 1; ++dj)
+      for (int64_t dk = -1; dk <= 1; ++dk) {
+        const size_t s = slot(cell_key(i + di, j + dj, k + dk));
+        for (int32_t e = first_[s]; e >= 0; e = next_[static_cast<size_t>(e)]) {
+          const int32_t id = ids_[static_cast<size_t>(e)];
+          const double* q = &xyz[3 * static_cast<size_t>(id)];
+          if (std::fabs(p[0] - q[0]) <= tol_ && std::fabs(p[1] - q[1]) <= tol_ && std::fabs(p[2] - q[2]) <= tol_) return id;
         }
       }
   return -1;
@@ -98,36 +197,40 @@ void ModelMesh::expect_model_edge(const std::vector<double>& nodes, int face_use
 }
 
 int64_t ModelMesh::drop_fins(const std::set<std::pair<int, int>>& alike) {
-  std::unordered_map<uint64_t, int> uses;
+  const EdgeTable edges(xyz_.size() / 3, tris_);
   std::vector<int> node_tris(xyz_.size() / 3, 0);
-  std::map<std::array<int32_t, 3>, std::vector<size_t>> on_boundary;  // welded corners -> triangles
+  std::vector<std::pair<std::array<int32_t, 3>, size_t>> on_boundary;  // welded corners, triangle
   for (size_t t = 0; t + 2 < tris_.size(); t += 3) {
-    for (int c = 0; c < 3; ++c) {
-      ++uses[pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])];
-      ++node_tris[static_cast<size_t>(tris_[t + static_cast<size_t>(c)])];
-    }
+    for (size_t c = 0; c < 3; ++c) ++node_tris[static_cast<size_t>(tris_[t + c])];
     if (welded_[static_cast<size_t>(tris_[t])] && welded_[static_cast<size_t>(tris_[t + 1])] && welded_[static_cast<size_t>(tris_[t + 2])]) {
       std::array<int32_t, 3> key{tris_[t], tris_[t + 1], tris_[t + 2]};
       std::sort(key.begin(), key.end());
-      on_boundary[key].push_back(t / 3);
+      on_boundary.push_back({key, t / 3});
     }
   }
+  std::sort(on_boundary.begin(), on_boundary.end());
   std::vector<char> drop(tri_face_.size(), 0);
   int64_t dropped = 0;
-  for (const auto& [key, list] : on_boundary) {
-    if (list.size() != 2) continue;
-    const int f = tri_face_[list[0]], g = tri_face_[list[1]];
-    if (f == g || alike.count({f, g}) || alike.count({g, f})) continue;
+  for (size_t g = 0; g < on_boundary.size();) {
+    size_t e = g + 1;
+    while (e < on_boundary.size() && on_boundary[e].first == on_boundary[g].first) ++e;
+    const size_t first = g, count = e - g;
+    g = e;
+    if (count != 2) continue;
+    const std::array<int32_t, 3>& key = on_boundary[first].first;
+    const size_t t0i = on_boundary[first].second, t1i = on_boundary[first + 1].second;
+    const int f = tri_face_[t0i], h = tri_face_[t1i];
+    if (f == h || alike.count({f, h}) || alike.count({h, f})) continue;
     // Once each way: the second triangle's corners run backwards through the first's.
-    const int32_t* t0 = &tris_[3 * list[0]];
-    const int32_t* t1 = &tris_[3 * list[1]];
+    const int32_t* t0 = &tris_[3 * t0i];
+    const int32_t* t1 = &tris_[3 * t1i];
     const int at = static_cast<int>(std::find(t1, t1 + 3, t0[0]) - t1);
     if (t1[(at + 2) % 3] != t0[1]) continue;
     // The kink: a corner on these two triangles only, its two edges on nothing else.
-    for (int c = 0; c < 3; ++c) {
-      const int32_t b = key[static_cast<size_t>(c)], x = key[static_cast<size_t>((c + 1) % 3)], y = key[static_cast<size_t>((c + 2) % 3)];
-      if (node_tris[static_cast<size_t>(b)] != 2 || uses[pair_key(b, x)] != 2 || uses[pair_key(b, y)] != 2) continue;
-      drop[list[0]] = drop[list[1]] = 1;
+    for (size_t c = 0; c < 3; ++c) {
+      const int32_t b = key[c], x = key[(c + 1) % 3], y = key[(c + 2) % 3];
+      if (node_tris[static_cast<size_t>(b)] != 2 || edges.uses(b, x) != 2 || edges.uses(b, y) != 2) continue;
+      drop[t0i] = drop[t1i] = 1;
       fin_nodes_.insert(b);
       dropped += 2;
       break;
@@ -149,12 +252,10 @@ int64_t ModelMesh::drop_fins(const std::set<std::pair<int, int>>& alike) {
 }
 
 std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int32_t>& triangles) {
-  std::unordered_map<uint64_t, int> uses;
-  for (size_t t = 0; t + 2 < triangles.size(); t += 3)
-    for (int c = 0; c < 3; ++c) ++uses[pair_key(triangles[t + static_cast<size_t>(c)], triangles[t + static_cast<size_t>((c + 1) % 3)])];
   std::vector<char> boundary(nodes, 0);
-  for (const auto& [key, n] : uses)
-    if (n == 1) boundary[key >> 32] = boundary[key & 0xffffffffULL] = 1;
+  EdgeTable(nodes, triangles).for_each([&](int32_t a, int32_t b, const auto* first, const auto* last) {
+    if (last - first == 1) boundary[static_cast<size_t>(a)] = boundary[static_cast<size_t>(b)] = 1;
+  });
   return boundary;
 }
 
@@ -179,7 +280,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
   // one triangle twice, once each way: a zero-volume fold. Both copies are dropped.
   std::vector<std::array<int32_t, 3>> kept;
   std::vector<int> kept_tags;
-  std::map<std::array<int32_t, 3>, std::vector<size_t>> by_corners;
+  std::vector<std::pair<std::array<int32_t, 3>, size_t>> by_corners;
   int64_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const int32_t a = global[static_cast<size_t>(triangles[t])], b = global[static_cast<size_t>(triangles[t + 1])],
@@ -190,14 +291,14 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     }
     std::array<int32_t, 3> key{a, b, c};
     std::sort(key.begin(), key.end());
-    by_corners[key].push_back(kept.size());
+    by_corners.push_back({key, kept.size()});
     kept.push_back({a, b, c});
     kept_tags.push_back(triangle_tags.empty() ? face_tag : triangle_tags[t / 3]);
   }
+  std::sort(by_corners.begin(), by_corners.end());
   std::vector<char> fold(kept.size(), 0);
-  for (const auto& [key, list] : by_corners)
-    if (list.size() > 1)
-      for (size_t i : list) fold[i] = 1;
+  for (size_t k = 0; k + 1 < by_corners.size(); ++k)
+    if (by_corners[k].first == by_corners[k + 1].first) fold[by_corners[k].second] = fold[by_corners[k + 1].second] = 1;
   for (size_t i = 0; i < kept.size(); ++i) {
     if (fold[i]) {
       ++dropped;
@@ -211,30 +312,12 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
 }
 
 ConformityCounts ModelMesh::conformity() const {
-  std::unordered_map<uint64_t, int> uses;
-  // Per edge, whether some face uses it other than twice (triangles are added face by face, so a
-  // face's uses of an edge are counted in a row).
-  std::unordered_map<uint64_t, std::pair<int, int>> run;  // edge -> (face of the current run, its count)
-  std::unordered_map<uint64_t, char> odd_in_a_face;
-  for (size_t t = 0; t + 2 < tris_.size(); t += 3)
-    for (int c = 0; c < 3; ++c) {
-      const uint64_t key = pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)]);
-      ++uses[key];
-      auto [it, fresh] = run.emplace(key, std::make_pair(tri_face_[t / 3], 0));
-      if (!fresh && it->second.first != tri_face_[t / 3]) {
-        if (it->second.second != 2) odd_in_a_face[key] = 1;
-        it->second = {tri_face_[t / 3], 0};
-      }
-      ++it->second.second;
-    }
-  for (const auto& [key, r] : run)
-    if (r.second != 2) odd_in_a_face[key] = 1;
+  const EdgeTable edges(xyz_.size() / 3, tris_);
   // Faces that lie on each other are meshed alike: their triangles at the edge are the same two
   // triples of points. Triangles that differ are faces folded onto each other, a defect. Points, not
   // nodes: the faces' interior nodes are not welded (see add_face), so two coincident faces meshed
   // alike (the touching faces of an assembly's volumes, or a body the file holds twice) have the
   // same triangles on nodes of their own.
-  std::unordered_map<uint64_t, std::vector<std::array<int32_t, 3>>> around;
   PointGrid points(grid_.tolerance());
   std::vector<double> point_xyz;                  // the distinct points seen, 3 doubles each
   std::unordered_map<int32_t, int32_t> point_of;  // node -> index of its point
@@ -251,39 +334,49 @@ ConformityCounts ModelMesh::conformity() const {
     }
     return it->second;
   };
-  for (size_t t = 0; t + 2 < tris_.size(); t += 3)
-    for (int c = 0; c < 3; ++c) {
-      const uint64_t key = pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)]);
-      if (uses[key] <= 2 || odd_in_a_face.count(key) || expected_uses_.count(key)) continue;
+  auto meshed_alike = [&](const std::pair<int32_t, int32_t>* first, const std::pair<int32_t, int32_t>* last) {
+    std::vector<std::array<int32_t, 3>> triples;
+    for (auto u = first; u < last; ++u) {
+      const size_t t = 3 * static_cast<size_t>(u->second);
       std::array<int32_t, 3> corners{point(tris_[t]), point(tris_[t + 1]), point(tris_[t + 2])};
       std::sort(corners.begin(), corners.end());
-      around[key].push_back(corners);
+      triples.push_back(corners);
     }
-  for (auto& [key, triples] : around) {
     std::sort(triples.begin(), triples.end());
-    if (std::unique(triples.begin(), triples.end()) - triples.begin() != 2) odd_in_a_face[key] = 1;
-  }
+    return std::unique(triples.begin(), triples.end()) - triples.begin() == 2;
+  };
   ConformityCounts out;
-  out.edges = static_cast<int64_t>(uses.size());
-  std::unordered_map<uint64_t, char> defect_edges;
-  for (const auto& [key, n] : uses) {
+  std::unordered_set<uint64_t> defect_edges;
+  edges.for_each([&](int32_t a, int32_t b, const std::pair<int32_t, int32_t>* first, const std::pair<int32_t, int32_t>* last) {
+    const int n = static_cast<int>(last - first);
+    // Whether some face uses the edge other than twice (a face's triangles are stored together).
+    bool odd_in_a_face = false;
+    for (auto u = first; u < last;) {
+      auto e = u + 1;
+      while (e < last && tri_face_[static_cast<size_t>(e->second)] == tri_face_[static_cast<size_t>(u->second)]) ++e;
+      odd_in_a_face |= e - u != 2;
+      u = e;
+    }
+    const uint64_t key = pair_key(a, b);
+    const auto it = expected_uses_.find(key);
+    if (n > 2 && !odd_in_a_face && it == expected_uses_.end()) odd_in_a_face = !meshed_alike(first, last);
+    ++out.edges;
     out.open_edges += n == 1;
     out.non_manifold_edges += n > 2;
-    const auto it = expected_uses_.find(key);
     // Off the model edges: twice, or twice by each of several faces lying on each other (touching
     // volumes of an assembly whose faces coincide, meshed alike).
-    const int want = it != expected_uses_.end() ? it->second : (odd_in_a_face.count(key) ? 2 : n);
+    const int want = it != expected_uses_.end() ? it->second : (odd_in_a_face ? 2 : n);
     out.brep_edge_segments += it != expected_uses_.end();
     if (n != want) {
-      defect_edges.emplace(key, 1);
+      defect_edges.insert(key);
       note_defect(out, key, n, want);
     }
     out.unexplained_open_edges += n < want;
     out.unexplained_non_manifold_edges += n > want;
-  }
+  });
   // A model-edge segment no triangle uses at all is a gap as well (both faces left it out).
   for (const auto& [key, want] : expected_uses_)
-    if (!uses.count(key)) {
+    if (!edges.uses(static_cast<int32_t>(key >> 32), static_cast<int32_t>(key & 0xffffffffULL))) {
       out.unexplained_open_edges += 1;
       note_defect(out, key, 0, want);
     }
@@ -292,8 +385,8 @@ ConformityCounts ModelMesh::conformity() const {
     bool bad = lo_lambda(&xyz_[3 * static_cast<size_t>(tris_[t])], &xyz_[3 * static_cast<size_t>(tris_[t + 1])],
                          &xyz_[3 * static_cast<size_t>(tris_[t + 2])]) < kZeroAreaLambda;
     out.zero_area_triangles += bad;
-    for (int c = 0; c < 3 && !bad; ++c)
-      bad = defect_edges.count(pair_key(tris_[t + static_cast<size_t>(c)], tris_[t + static_cast<size_t>((c + 1) % 3)])) > 0;
+    for (size_t c = 0; c < 3 && !bad && !defect_edges.empty(); ++c)
+      bad = defect_edges.count(pair_key(tris_[t + c], tris_[t + (c + 1) % 3])) > 0;
     if (bad) faces.push_back(tri_face_[t / 3]);
   }
   std::sort(faces.begin(), faces.end());

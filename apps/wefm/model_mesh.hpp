@@ -16,6 +16,8 @@
 namespace wefm_cli {
 
 // Points by grid cells of side `tol`: the point within `tol` (per coordinate) of a query, if any.
+// The cells live in one open-addressed table, each cell's points in a list in the order they were
+// added: a weld looks up every boundary node of every face, so this is on the path of every model.
 class PointGrid {
  public:
   explicit PointGrid(double tol) : tol_(tol > 0 ? tol : 1e-300) {}
@@ -24,9 +26,15 @@ class PointGrid {
   double tolerance() const { return tol_; }
 
  private:
-  uint64_t key(const double* p, int di, int dj, int dk) const;
+  size_t slot(uint64_t key) const;  // the slot holding `key`, or the empty slot where it would go
+  void grow();
   double tol_;
-  std::unordered_multimap<uint64_t, int32_t> cells_;
+  std::vector<uint64_t> keys_;     // per slot: a cell's key
+  std::vector<int32_t> first_;     // per slot: the cell's first entry, -1 for an empty slot
+  std::vector<int32_t> last_;      // per slot: the cell's last entry
+  std::vector<int32_t> ids_;       // per entry: the point's id
+  std::vector<int32_t> next_;      // per entry: the next entry in its cell, -1 at the end
+  size_t cells_ = 0;
 };
 
 struct ConformityCounts {
