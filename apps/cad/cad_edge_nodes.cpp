@@ -478,6 +478,14 @@ double face_width(const CadFace& f) {
   return perimeter > 0 ? 2 * face_area(f) / perimeter : std::nan("");
 }
 
+EdgeNodes uniform_edge_nodes(const CadFace& face, const CadEdge& edge, long long segments) {
+  segments = std::max(1LL, segments);
+  const double length = chain_length(face, edge);
+  std::vector<double> targets;
+  for (long long k = 0; k <= segments; ++k) targets.push_back(length * static_cast<double>(k) / static_cast<double>(segments));
+  return place(face, edge, targets);
+}
+
 std::vector<double> local_face_sizes(const CadModel& model, double h) {
   std::vector<double> sizes(model.faces.size(), h);
   for (size_t k = 0; k < model.faces.size(); ++k) {

@@ -23,12 +23,18 @@ struct EdgeNodes {
 // (discretise_model_edges).
 std::vector<double> local_face_sizes(const CadModel& model, double h);
 
+// The 3D length of an edge's facet chain in a face.
+double chain_length(const CadFace& face, const CadEdge& edge);
+
 // The area of a face's tessellation.
 double face_area(const CadFace& face);
 
 // A face's width: 2 area / perimeter over its loops (a seam counts twice, as it bounds the domain
 // twice): the width of a long strip, the radius of a disk. NaN when the loops have no length.
 double face_width(const CadFace& face);
+
+// Nodes along an edge's facet chain at `segments` (>= 1) equal steps of its 3D arc length.
+EdgeNodes uniform_edge_nodes(const CadFace& face, const CadEdge& edge, long long segments);
 
 // Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or

@@ -29,6 +29,7 @@
 #include "cad_wefm.hpp"
 #include "flatten_settings.hpp"
 #include "mesh_formats.hpp"
+#include "mapped_tubes.hpp"
 #include "model_mesh.hpp"
 #include "output_file.hpp"
 #include "output_paths.hpp"
@@ -70,7 +71,10 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"no-merge-faces", 0, "", "mesh every B-rep face on its own (default: a face narrower than H / 100 or with a "
                                 "corner under 12 degrees is meshed together with its smoothest neighbour, its "
                                 "triangles still written as its own)", "", false},
-      {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces)", "", true},
+      {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; a face whose opposite sides get different node "
+                              "counts is meshed free, with a note)", "", true},
+      {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, two circles and a seam, is "
+                                 "meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
       {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "
                                "and cap each face's refinement at N; 0 = no limit", std::to_string(kDefaultMaxElements), false},
@@ -107,6 +111,8 @@ struct FaceMeshRun {
   wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
   int edge_refinements = 0;           // times its edges were discretised again (refine_for_failed_faces)
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
+  std::string type = "free";          // how it was meshed: free or transfinite
+  std::string mapped_refused;         // why a face meant to be mapped was meshed free
 };
 
 // The run of a face to be meshed again: nothing but its face and how often its edges were refined.
@@ -133,8 +139,11 @@ wefm_status fetch(std::vector<T>& out, G get) {
   return n == 0 ? WEFM_OK : get(out.data(), n, &n);
 }
 
+// `mapped` (or null): transfinite options tried first; where the library refuses them (not four
+// sides with matching node counts) the face is meshed with `mesh_options` on the same domain.
 void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_mesh_options& mesh_options,
-                   const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, CancelWatcher& watcher) {
+                   const wefm_mesh_options* mapped, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
+                   CancelWatcher& watcher) {
   auto fail = [&](int code, const std::string& why) {
     r.exit_code = code;
     r.status = "failed";
@@ -181,7 +190,13 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   wefm_domain_mesh* dm_raw = nullptr;
   {
     WatchedFace watched(&watcher, raw);
-    st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+    st = mapped ? wefm_face_mesh_domain(raw, mapped, &dm_raw) : WEFM_ERROR_UNSUPPORTED;
+    r.type = mapped ? "transfinite" : "free";
+    if (st == WEFM_ERROR_UNSUPPORTED) {
+      if (mapped) r.mapped_refused = wefm_face_last_error(raw);
+      r.type = "free";
+      st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+    }
   }
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
   r.time_mesh = since(t1);
@@ -648,6 +663,9 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     return kExitSolver;
   }
   auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
+  const std::set<size_t> mapped = args.has("no-mapped-tubes") || args.has("no-local-size")
+                                      ? std::set<size_t>{}
+                                      : map_thin_tubes(model, size, face_sizes, edge_nodes);
   const double time_edges = since(t_edges);
 
   wefm_mesh_options free_options, tf_options;
@@ -670,9 +688,10 @@ int run_mesh_model(const std::vector<std::string>& argv) {
       for (size_t k; !interrupted() && (k = next++) < todo.size();) {
         const size_t i = todo[k];
         FaceMeshRun& r = runs[i];
-        wefm_mesh_options options = transfinite.count(r.face->index) ? tf_options : free_options;
-        options.size = face_sizes[i];
-        mesh_one_face(r, settings, options, edge_nodes, watcher);
+        const bool map = transfinite.count(r.face->index) || mapped.count(i);
+        wefm_mesh_options options = free_options, map_options = tf_options;
+        options.size = map_options.size = face_sizes[i];
+        mesh_one_face(r, settings, options, map ? &map_options : nullptr, edge_nodes, watcher);
         const size_t done = ++finished;
         if (!quiet) {
           std::lock_guard<std::mutex> lock(print_mutex);
@@ -769,6 +788,10 @@ int run_mesh_model(const std::vector<std::string>& argv) {
               static_cast<long long>(conf.unexplained_non_manifold_edges), failed, time_total, model.time_read, model.time_mesh, time_edges,
               time_faces, n_threads, time_weld, time_check, time_write);
   for (const FaceMeshRun& r : runs)
+    if (!r.mapped_refused.empty() && transfinite.count(r.face->index))
+      std::fprintf(stderr, "wefm: %s face %d (%s): meshed free, not transfinite: %s\n", model_path.c_str(), r.face->index,
+                   r.face->surface_type.c_str(), r.mapped_refused.c_str());
+  for (const FaceMeshRun& r : runs)
     if (!r.reason.empty())
       std::fprintf(stderr, "wefm: %s face %d (%s): %s\n", model_path.c_str(), r.face->index, r.face->surface_type.c_str(),
                    r.reason.c_str());
@@ -812,7 +835,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
       const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
       faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
                        {"reason", r.reason}, {"elements", fq.triangles},
-                       {"type", transfinite.count(r.face->index) ? "transfinite" : "free"},
+                       {"type", r.type},
+                       {"mapped_refused", r.mapped_refused.empty() ? Json(nullptr) : Json(r.mapped_refused)},
                        {"size", face_sizes[static_cast<size_t>(&r - runs.data())]},
                        {"width", std::isfinite(wefm_cad::face_width(*r.face)) ? Json(wefm_cad::face_width(*r.face)) : Json(nullptr)},
                        {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},

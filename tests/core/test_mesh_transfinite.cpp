@@ -57,6 +57,34 @@ TEST_CASE("transfinite meshing splits quads into triangles on request and honour
   CHECK_THROWS_AS(f.mesh_domain(o), Error);
 }
 
+TEST_CASE("transfinite meshing takes caller-given edge nodes as its sides' nodes") {
+  const auto f = test::solved(test::unit_square(4));
+  REQUIRE(f.topo().edges.size() == 1);
+  // Uneven nodes on the square's only edge, in its direction; the corners stay nodes (they turn).
+  meshing::EdgeNodes given;
+  given[0] = {Vec3(0.1, 0, 0), Vec3(0.3, 0, 0), Vec3(0.7, 0, 0), Vec3(1, 0.5, 0),
+              Vec3(0.8, 1, 0), Vec3(0.5, 1, 0), Vec3(0.2, 1, 0), Vec3(0, 0.5, 0)};
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Transfinite;
+  o.size = 0.1;  // ignored along given edges: the grid follows the given nodes
+  const auto dm = f.mesh_domain(o, given);
+  CHECK(dm.report.elements == 4 * 2);
+  int found = 0;
+  for (const Vec3& g : given[0])
+    for (const Vec3& x : dm.xyz) found += x == g ? 1 : 0;  // bit for bit, as the neighbours have them
+  CHECK(found == 8);
+  CHECK(dm.report.scaled_jacobian_min > 0.5);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+  // Opposite sides with different counts have no grid between them.
+  given[0].erase(given[0].begin() + 5);
+  try {
+    f.mesh_domain(o, given);
+    FAIL("expected Error(unsupported)");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::unsupported);
+  }
+}
+
 TEST_CASE("transfinite meshing refuses a face with holes") {
   const auto f = test::solved(test::disk_with_holes());
   meshing::MeshOptions o;

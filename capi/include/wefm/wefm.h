@@ -732,7 +732,9 @@ typedef struct wefm_domain_mesh wefm_domain_mesh;
 /** wefm_mesh_options.type. */
 typedef enum wefm_mesh_type {
   WEFM_MESH_FREE = 0,        /**< frontal-Delaunay triangles sized in 3D, then smoothing and optimisation */
-  WEFM_MESH_TRANSFINITE = 1  /**< Coons patch on four corners, quads (or split triangles) */
+  WEFM_MESH_TRANSFINITE = 1  /**< Coons patch on four corners, quads (or split triangles); with edge nodes set
+                                  (wefm_face_set_edge_nodes) the sides carry those nodes and opposite sides
+                                  must have as many (else WEFM_ERROR_UNSUPPORTED) */
 } wefm_mesh_type;
 
 /** Options of wefm_face_mesh_domain(); fill with wefm_mesh_options_init() first. */
@@ -771,6 +773,7 @@ WEFM_API wefm_status wefm_mesh_report_init(wefm_mesh_report* report, size_t stru
 /**
  * Use caller-given 3D nodes along edge `edge` (3n doubles, in the edge's direction, including both end
  * vertices) instead of discretising it at the global size. The nodes must lie on the edge's facet chain.
+ * Free and transfinite meshes both take them, so faces given the same nodes on a shared edge conform.
  */
 WEFM_API wefm_status wefm_face_set_edge_nodes(wefm_face* face, int32_t edge, int64_t n, const double* xyz);
 /** Forget every wefm_face_set_edge_nodes(): all edges are discretised at the global size again. */

@@ -37,7 +37,7 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
   DomainMesh out;
   const SurfaceMap map(mesh, topo, uv);
   if (o.type == MeshType::Transfinite) {
-    transfinite_mesh(mesh, topo, uv, map, o, out);
+    transfinite_mesh(mesh, topo, uv, map, o, given, out);
   } else {
     auto t0 = std::chrono::steady_clock::now();
     const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);

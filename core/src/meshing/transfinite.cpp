@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "wefm/core/meshing/size_field.hpp"
 #include "wefm/core/sys/error.hpp"
 
 namespace wefm::meshing {
@@ -36,39 +37,107 @@ std::array<size_t, 4> transfinite_corners(const Topology& topo, const VectorXc& 
   return c;
 }
 
-void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o, DomainMesh& out) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto c = transfinite_corners(topo, uv, o.corners);
+namespace {
+
+// Before the grid is allocated: a size far below the face's would otherwise exhaust memory.
+void check_elements(Index n, Index m, const MeshOptions& o) {
+  const std::int64_t elements = static_cast<std::int64_t>(n) * m * (o.quads ? 1 : 2);
+  if (o.max_elements > 0 && elements > o.max_elements)
+    fail(Errc::invalid_argument, "the transfinite mesh would have " + std::to_string(elements) + " elements, above max_elements = " + std::to_string(o.max_elements));
+}
+
+// Normalised 3D arc length at each node of a side (0 at its first node, 1 at its last).
+std::vector<double> arc_parameters(const LoopNodes& side) {
+  std::vector<double> t(side.xyz.size(), 0.0);
+  for (size_t k = 1; k < t.size(); ++k) t[k] = t[k - 1] + (side.xyz[k] - side.xyz[k - 1]).norm();
+  const double total = t.empty() ? 0.0 : t.back();
+  for (double& x : t) x = total > 0 ? x / total : 0.0;
+  return t;
+}
+
+// The four sides (bottom, right, top, left; each with both ends) of the outer loop as the free
+// mesher discretises it, so the caller's edge nodes are the sides' nodes. Opposite sides must have
+// as many nodes: the grid's rows run from one to the other.
+std::array<LoopNodes, 4> sides_from_given(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o,
+                                          const EdgeNodes& given, const std::array<size_t, 4>& c) {
+  const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);
+  const LoopNodes& loop = loops[static_cast<size_t>(topo.outer_loop)];
+  const auto& lu = topo.loop_uses[static_cast<size_t>(topo.outer_loop)];
+  std::array<size_t, 4> at{};
+  for (size_t k = 0; k < 4; ++k) {
+    const auto it = std::find(loop.use.begin(), loop.use.end(), lu[c[k]]);
+    if (it == loop.use.end()) fail(Errc::unsupported, "transfinite meshing: corner " + std::to_string(k) + " is not a boundary node");
+    at[k] = static_cast<size_t>(it - loop.use.begin());
+  }
+  const size_t n = loop.uv.size();
+  std::array<LoopNodes, 4> side;
+  for (size_t k = 0; k < 4; ++k)
+    for (size_t j = at[k];; j = (j + 1) % n) {
+      side[k].uv.push_back(loop.uv[j]), side[k].xyz.push_back(loop.xyz[j]), side[k].use.push_back(loop.use[j]);
+      if (j == at[(k + 1) % 4]) break;
+    }
+  if (side[0].uv.size() != side[2].uv.size() || side[1].uv.size() != side[3].uv.size())
+    fail(Errc::unsupported, "transfinite meshing with the caller's edge nodes needs opposite sides with as many nodes (sides have " +
+                                std::to_string(side[0].uv.size()) + ", " + std::to_string(side[1].uv.size()) + ", " +
+                                std::to_string(side[2].uv.size()) + " and " + std::to_string(side[3].uv.size()) + " nodes)");
+  return side;
+}
+
+// Uniform sides at the option's size: opposite sides get the mean of their counts.
+std::array<LoopNodes, 4> uniform_sides(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o,
+                                       const std::array<size_t, 4>& c) {
   const Index loop = topo.outer_loop;
   double len[4];
   for (size_t k = 0; k < 4; ++k) len[k] = run_length(mesh, topo, loop, c[k], c[(k + 1) % 4]);
   const Index n = std::max<Index>(1, static_cast<Index>(std::lround(0.5 * (len[0] + len[2]) / o.size)));
   const Index m = std::max<Index>(1, static_cast<Index>(std::lround(0.5 * (len[1] + len[3]) / o.size)));
-  if (o.max_elements > 0 && static_cast<std::int64_t>(n) * m * (o.quads ? 1 : 2) > o.max_elements)
-    fail(Errc::invalid_argument, "the transfinite mesh would have " + std::to_string(static_cast<std::int64_t>(n) * m * (o.quads ? 1 : 2)) + " elements, above max_elements = " + std::to_string(o.max_elements));
-  // Sides with both ends, running in +xi (bottom, top) and +eta (left, right).
-  LoopNodes side[4];
+  check_elements(n, m, o);
+  std::array<LoopNodes, 4> side;
   for (size_t k = 0; k < 4; ++k) {
     side[k] = discretise_run(mesh, topo, uv, loop, c[k], c[(k + 1) % 4], k % 2 == 0 ? n : m);
     const LoopNodes end = discretise_run(mesh, topo, uv, loop, c[(k + 1) % 4], c[(k + 2) % 4], 1);
     side[k].uv.push_back(end.uv[0]), side[k].xyz.push_back(end.xyz[0]), side[k].use.push_back(end.use[0]);
   }
+  return side;
+}
+
+}  // namespace
+
+void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
+                      const EdgeNodes& given, DomainMesh& out) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto c = transfinite_corners(topo, uv, o.corners);
+  std::array<LoopNodes, 4> side = given.empty() ? uniform_sides(mesh, topo, uv, o, c) : sides_from_given(mesh, topo, uv, o, given, c);
+  const Index n = static_cast<Index>(side[0].uv.size()) - 1, m = static_cast<Index>(side[1].uv.size()) - 1;
+  check_elements(n, m, o);
+  // Sides running in +xi (bottom, top) and +eta (left, right).
   for (size_t k : {size_t(2), size_t(3)}) {
     std::reverse(side[k].uv.begin(), side[k].uv.end());
     std::reverse(side[k].xyz.begin(), side[k].xyz.end());
   }
   const LoopNodes &B = side[0], &R = side[1], &T = side[2], &L = side[3];
+  // The blend's parameters: node index over count on uniform sides, else the mean of the two
+  // opposite sides' arc-length parameters, so graded edge nodes grade the rows between them.
+  std::vector<double> xi(static_cast<size_t>(n) + 1), eta(static_cast<size_t>(m) + 1);
+  if (given.empty()) {
+    for (Index i = 0; i <= n; ++i) xi[static_cast<size_t>(i)] = double(i) / n;
+    for (Index j = 0; j <= m; ++j) eta[static_cast<size_t>(j)] = double(j) / m;
+  } else {
+    const auto b = arc_parameters(B), t = arc_parameters(T), l = arc_parameters(L), r = arc_parameters(R);
+    for (size_t i = 0; i < xi.size(); ++i) xi[i] = 0.5 * (b[i] + t[i]);
+    for (size_t j = 0; j < eta.size(); ++j) eta[j] = 0.5 * (l[j] + r[j]);
+  }
   auto id = [&](Index i, Index j) { return j * (n + 1) + i; };
   out.uv.assign(static_cast<size_t>((n + 1) * (m + 1)), P2::Zero());
   out.xyz.assign(out.uv.size(), Vec3::Zero());
   std::vector<char> on_side(out.uv.size(), 0);
   for (Index j = 0; j <= m; ++j)
     for (Index i = 0; i <= n; ++i) {
-      const double xi = double(i) / n, eta = double(j) / m;
       const size_t k = static_cast<size_t>(id(i, j)), ii = static_cast<size_t>(i), jj = static_cast<size_t>(j);
-      out.uv[k] = (1 - eta) * B.uv[ii] + eta * T.uv[ii] + (1 - xi) * L.uv[jj] + xi * R.uv[jj] -
-                  ((1 - xi) * (1 - eta) * B.uv[0] + xi * (1 - eta) * B.uv[static_cast<size_t>(n)] + xi * eta * T.uv[static_cast<size_t>(n)] +
-                   (1 - xi) * eta * T.uv[0]);
+      const double x = xi[ii], e = eta[jj];
+      out.uv[k] = (1 - e) * B.uv[ii] + e * T.uv[ii] + (1 - x) * L.uv[jj] + x * R.uv[jj] -
+                  ((1 - x) * (1 - e) * B.uv[0] + x * (1 - e) * B.uv[static_cast<size_t>(n)] + x * e * T.uv[static_cast<size_t>(n)] +
+                   (1 - x) * e * T.uv[0]);
       // Boundary nodes keep their exact 3D points (a seam's two sides stay the same points).
       if (j == 0) out.uv[k] = B.uv[ii], out.xyz[k] = B.xyz[ii], on_side[k] = 1;
       else if (j == m) out.uv[k] = T.uv[ii], out.xyz[k] = T.xyz[ii], on_side[k] = 1;
