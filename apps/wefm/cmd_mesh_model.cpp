@@ -562,138 +562,140 @@ bool copy_coincident(FaceMeshRun& j, const FaceMeshRun& i, const std::map<long l
   return true;
 }
 
-int run_mesh_model(const std::vector<std::string>& argv) {
+// What the command line asks for, checked.
+struct MeshModelRequest {
+  FlattenSettings settings;
+  std::string model_path, out_path, report_path;  // report_path empty: no report
+  MeshFormat format = MeshFormat::msh;
+  double size = 0;  // model units, or a fraction of the diagonal (size_is_ratio)
+  bool size_is_ratio = false;
+  long long jobs = 1, max_elements = kDefaultMaxElements, smoothing = -1;
+  wefm_cad::TessellationSettings tess;
+  std::set<long long> transfinite;  // face numbers
+  bool quiet = false, local_size = true, merge_faces = true, mapped_tubes = true;
+};
+
+// Parses and checks the arguments. Returns -1 to go on, else the exit code (help printed, bad usage).
+int parse_request(const std::vector<std::string>& argv, MeshModelRequest& q) {
   const auto specs = mesh_model_specs();
   ParsedArgs args;
   std::string error;
-  FlattenSettings settings;
-  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, settings, error))) {
-    std::fprintf(stderr, "wefm mesh-model: %s (see wefm mesh-model --help)\n", error.c_str());
+  auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "wefm mesh-model: %s\n", message.c_str());
     return kExitUsage;
-  }
+  };
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, q.settings, error)))
+    return usage(error + " (see wefm mesh-model --help)");
   if (args.help) {
     print_help();
     return kExitOk;
   }
-  if (args.positionals.size() != 1 || !args.has("output") || args.has("size") == args.has("size-ratio")) {
-    std::fprintf(stderr, "wefm mesh-model: expected one MODEL, -o FILE and one of --size or --size-ratio (see --help)\n");
-    return kExitUsage;
-  }
-  const std::string out_path = args.value("output");
-  MeshFormat format = MeshFormat::msh;
-  if (!mesh_format_of(out_path, format, error)) {
-    std::fprintf(stderr, "wefm mesh-model: -o: %s\n", error.c_str());
-    return kExitUsage;
-  }
-  double size = 0;
-  const char* size_opt = args.has("size") ? "size" : "size-ratio";
-  if (!parse_double(args.value(size_opt), size) || !(size > 0)) {
-    std::fprintf(stderr, "wefm mesh-model: --%s: expected a number > 0\n", size_opt);
-    return kExitUsage;
-  }
-  long long jobs = std::max(1u, std::thread::hardware_concurrency()), smoothing = -1;
-  if (args.has("jobs") && (!parse_int(args.value("jobs"), jobs) || jobs < 1 || jobs > 1024)) {
-    std::fprintf(stderr, "wefm mesh-model: -j: expected a thread count >= 1\n");
-    return kExitUsage;
-  }
-  long long max_elements = kDefaultMaxElements;
-  if (args.has("max-elements") && (!parse_int(args.value("max-elements"), max_elements) || max_elements < 0)) {
-    std::fprintf(stderr, "wefm mesh-model: --max-elements: expected a count >= 0\n");
-    return kExitUsage;
-  }
-  if (args.has("smoothing") && (!parse_int(args.value("smoothing"), smoothing) || smoothing < 0)) {
-    std::fprintf(stderr, "wefm mesh-model: --smoothing: expected a count >= 0\n");
-    return kExitUsage;
-  }
-  wefm_cad::TessellationSettings tess;
-  for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &tess.relative_deflection},
-                             std::pair<const char*, double*>{"angular-deflection", &tess.angular_deflection}}) {
-    if (args.has(name) && (!parse_double(args.value(name), *field) || !(*field > 0))) {
-      std::fprintf(stderr, "wefm mesh-model: --%s: expected a number > 0\n", name);
-      return kExitUsage;
-    }
-  }
-  std::set<long long> transfinite;
+  if (args.positionals.size() != 1 || !args.has("output") || args.has("size") == args.has("size-ratio"))
+    return usage("expected one MODEL, -o FILE and one of --size or --size-ratio (see --help)");
+  q.out_path = args.value("output");
+  if (!mesh_format_of(q.out_path, q.format, error)) return usage("-o: " + error);
+  q.size_is_ratio = args.has("size-ratio");
+  const char* size_opt = q.size_is_ratio ? "size-ratio" : "size";
+  if (!parse_double(args.value(size_opt), q.size) || !(q.size > 0)) return usage(std::string("--") + size_opt + ": expected a number > 0");
+  q.jobs = std::max(1u, std::thread::hardware_concurrency());
+  if (args.has("jobs") && (!parse_int(args.value("jobs"), q.jobs) || q.jobs < 1 || q.jobs > 1024))
+    return usage("-j: expected a thread count >= 1");
+  if (args.has("max-elements") && (!parse_int(args.value("max-elements"), q.max_elements) || q.max_elements < 0))
+    return usage("--max-elements: expected a count >= 0");
+  if (args.has("smoothing") && (!parse_int(args.value("smoothing"), q.smoothing) || q.smoothing < 0))
+    return usage("--smoothing: expected a count >= 0");
+  for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &q.tess.relative_deflection},
+                             std::pair<const char*, double*>{"angular-deflection", &q.tess.angular_deflection}})
+    if (args.has(name) && (!parse_double(args.value(name), *field) || !(*field > 0)))
+      return usage(std::string("--") + name + ": expected a number > 0");
   if (args.has("transfinite"))
     for (const std::string& v : args.values.at("transfinite")) {
       long long k = 0;
-      if (!parse_int(v, k) || k < 1) {
-        std::fprintf(stderr, "wefm mesh-model: --transfinite: expected a face number >= 1, got '%s'\n", v.c_str());
-        return kExitUsage;
-      }
-      transfinite.insert(k);
+      if (!parse_int(v, k) || k < 1) return usage("--transfinite: expected a face number >= 1, got '" + v + "'");
+      q.transfinite.insert(k);
     }
-  const bool quiet = args.has("quiet");
-  const std::string model_path = args.positionals[0];
-  std::vector<NamedPath> outputs = {{"-o", out_path}};
-  if (args.has("report")) outputs.push_back({"--report", args.value("report")});
-  if (!check_output_paths({{"MODEL", model_path}}, outputs, error)) {
-    std::fprintf(stderr, "wefm mesh-model: %s\n", error.c_str());
-    return kExitUsage;
+  q.quiet = args.has("quiet");
+  q.local_size = !args.has("no-local-size");
+  q.merge_faces = !args.has("no-merge-faces");
+  q.mapped_tubes = !args.has("no-mapped-tubes");
+  q.model_path = args.positionals[0];
+  std::vector<NamedPath> outputs = {{"-o", q.out_path}};
+  if (args.has("report")) {
+    q.report_path = args.value("report");
+    outputs.push_back({"--report", q.report_path});
   }
-  const auto t_start = Clock::now();
+  if (!check_output_paths({{"MODEL", q.model_path}}, outputs, error)) return usage(error);
+  return -1;
+}
 
-  wefm_cad::CadModel model;
-  if (const int code = load_cad_model_via_plugin(model_path, tess, model, error)) {
-    std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return code;
-  }
-  if (args.has("size-ratio")) size *= model.bbox_diagonal;
-  const auto t_edges = Clock::now();
-  std::vector<double> face_sizes(model.faces.size(), size);
+// How the model is to be meshed: sizes per face, faces merged, every model edge's nodes, the faces
+// mapped. Decided before any face is meshed.
+struct ModelPlan {
+  std::vector<double> face_sizes;
+  double gradation = 0;
+  VirtualTopology virtual_faces;
+  std::map<long long, wefm_cad::EdgeNodes> edge_nodes;
+  std::set<size_t> mapped;
+  double time = 0;
+};
+
+// Returns -1 to go on, or kExitSolver when the model would need more than the limits allow. Merging
+// faces (virtual_faces) changes `model`.
+int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size, ModelPlan& plan) {
+  const auto t0 = Clock::now();
+  plan.face_sizes.assign(model.faces.size(), size);
   // Edges grade towards short neighbours at the rate (0.3 per unit length) the library grades a
   // face's inside from its short boundary segments, so the two meet without a jump.
-  double gradation = 0;
-  if (!args.has("no-local-size")) {
-    face_sizes = wefm_cad::local_face_sizes(model, size);
-    gradation = 0.3;
+  if (q.local_size) {
+    plan.face_sizes = wefm_cad::local_face_sizes(model, size);
+    plan.gradation = 0.3;
   }
-  const VirtualTopology virtual_faces =
-      args.has("no-merge-faces") ? VirtualTopology{} : merge_narrow_faces(model, size, face_sizes);
+  if (q.merge_faces) plan.virtual_faces = merge_narrow_faces(model, size, plan.face_sizes);
   // Before any edge is discretised: a size far below the model's (a typo, a unit mix-up) would
   // otherwise grow until memory runs out.
-  const double estimate = estimated_triangles(model, face_sizes);
+  const double estimate = estimated_triangles(model, plan.face_sizes);
   const double estimate_mb = estimate * kBytesPerTriangle / 1e6;
-  if ((max_elements > 0 && estimate > static_cast<double>(max_elements)) ||
-      (settings.options.memory_limit_mb > 0 && estimate_mb > settings.options.memory_limit_mb)) {
+  const double memory_limit = q.settings.options.memory_limit_mb;
+  if ((q.max_elements > 0 && estimate > static_cast<double>(q.max_elements)) || (memory_limit > 0 && estimate_mb > memory_limit)) {
     std::fprintf(stderr,
                  "wefm: %s at size %g would need about %.3g triangles (about %.0f MB), above --max-elements %lld or "
                  "--memory-limit %g MB: refused before meshing (a larger --size, or raise the limits)\n",
-                 model_path.c_str(), size, estimate, estimate_mb, max_elements, settings.options.memory_limit_mb);
+                 q.model_path.c_str(), size, estimate, estimate_mb, q.max_elements, memory_limit);
     return kExitSolver;
   }
-  auto edge_nodes = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
-  const std::set<size_t> mapped = args.has("no-mapped-tubes") || args.has("no-local-size")
-                                      ? std::set<size_t>{}
-                                      : map_thin_tubes(model, size, face_sizes, edge_nodes);
-  const double time_edges = since(t_edges);
+  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation);
+  if (q.mapped_tubes && q.local_size) plan.mapped = map_thin_tubes(model, size, plan.face_sizes, plan.edge_nodes);
+  plan.time = since(t0);
+  return -1;
+}
 
+// Meshes every face on `threads` threads: first all, then again those whose edges had to be refined
+// or whose edge nodes a neighbour adopted. A face lying on an earlier one gets that one's mesh where
+// it can (copy_coincident), also when only the earlier one was meshed again.
+void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan,
+                    std::vector<FaceMeshRun>& runs, size_t n_threads, double weld_tolerance) {
   wefm_mesh_options free_options, tf_options;
   wefm_mesh_options_init(&free_options, sizeof free_options);
   free_options.size = size;
-  free_options.max_elements = max_elements;
-  if (smoothing >= 0) free_options.smoothing_iterations = static_cast<int>(smoothing);
+  free_options.max_elements = q.max_elements;
+  if (q.smoothing >= 0) free_options.smoothing_iterations = static_cast<int>(q.smoothing);
   tf_options = free_options;
   tf_options.type = WEFM_MESH_TRANSFINITE;
   tf_options.quads = 1;
-
   CancelWatcher watcher;
-  std::vector<FaceMeshRun> runs(model.faces.size());
-  for (size_t i = 0; i < runs.size(); ++i) runs[i].face = &model.faces[i];
   std::mutex print_mutex;
-  const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), std::max<size_t>(1, runs.size()));
   auto mesh_faces = [&](const std::vector<size_t>& todo) {
     std::atomic<size_t> next{0}, finished{0};
     auto worker = [&] {
       for (size_t k; !interrupted() && (k = next++) < todo.size();) {
         const size_t i = todo[k];
         FaceMeshRun& r = runs[i];
-        const bool map = transfinite.count(r.face->index) || mapped.count(i);
+        const bool map = q.transfinite.count(r.face->index) || plan.mapped.count(i);
         wefm_mesh_options options = free_options, map_options = tf_options;
-        options.size = map_options.size = face_sizes[i];
-        mesh_one_face(r, settings, options, map ? &map_options : nullptr, edge_nodes, watcher);
+        options.size = map_options.size = plan.face_sizes[i];
+        mesh_one_face(r, q.settings, options, map ? &map_options : nullptr, plan.edge_nodes, watcher);
         const size_t done = ++finished;
-        if (!quiet) {
+        if (!q.quiet) {
           std::lock_guard<std::mutex> lock(print_mutex);
           std::fprintf(stderr, "[%zu/%zu] f%03d %s: %s (%.2f s)\n", done, todo.size(), r.face->index,
                        r.face->surface_type.c_str(), r.status.c_str(), r.time_solve + r.time_mesh);
@@ -704,11 +706,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     for (size_t t = 0; t < std::min(n_threads, todo.size()); ++t) threads.emplace_back(worker);
     for (auto& t : threads) t.join();
   };
-  // Weld at a tolerance far below the size and the facet lengths, far above rounding.
-  const double weld_tolerance = 1e-7 * model.bbox_diagonal;
   const std::vector<size_t> source = coincident_faces(model);
-  // Meshes the faces of `todo`; a face lying on an earlier one gets that one's mesh where it can
-  // (copy_coincident), also when only the earlier one was meshed again.
   auto mesh_or_copy = [&](const std::vector<size_t>& todo) {
     const std::set<size_t> asked(todo.begin(), todo.end());
     std::vector<size_t> own, alone;
@@ -718,33 +716,34 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     for (size_t j = 0; j < runs.size(); ++j)
       if (source[j] && (asked.count(j) || asked.count(source[j] - 1))) {
         reset_run(runs[j], runs[j].edge_refinements);
-        if (!copy_coincident(runs[j], runs[source[j] - 1], edge_nodes, weld_tolerance)) alone.push_back(j);
+        if (!copy_coincident(runs[j], runs[source[j] - 1], plan.edge_nodes, weld_tolerance)) alone.push_back(j);
       }
     mesh_faces(alone);
   };
-  const auto t_faces = Clock::now();
   std::vector<size_t> todo(runs.size());
   for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
   mesh_or_copy(todo);
   for (int round = 0; round < kEdgeRefinements && !interrupted(); ++round) {
-    todo = refine_for_failed_faces(model, runs, size, gradation, face_sizes, edge_nodes);
+    todo = refine_for_failed_faces(model, runs, size, plan.gradation, plan.face_sizes, plan.edge_nodes);
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
   for (int round = 0; round < kEdgeNodeAdoptions && !interrupted(); ++round) {
-    todo = adopt_edge_nodes(model, runs, edge_nodes, weld_tolerance, source);
+    todo = adopt_edge_nodes(model, runs, plan.edge_nodes, weld_tolerance, source);
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
-  const double time_faces = since(t_faces);
+}
 
-  const auto t_weld = Clock::now();
-  ModelMesh whole(weld_tolerance);
+// The face meshes welded into one, fins dropped, the model edges declared for the conformity check.
+// Returns the triangles welding collapsed or dropped.
+int64_t assemble(const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs, double size,
+                 ModelMesh& whole) {
   int64_t collapsed = 0;
   for (size_t i = 0; i < runs.size(); ++i)
     if (!runs[i].tris.empty())
       collapsed += whole.add_face(runs[i].face->index, runs[i].xyz, runs[i].tris,
-                                  triangle_faces(virtual_faces, i, *runs[i].face, runs[i].xyz, runs[i].tris, size));
+                                  triangle_faces(plan.virtual_faces, i, *runs[i].face, runs[i].xyz, runs[i].tris, size));
   std::set<std::pair<int, int>> alike;
   for (const FaceMeshRun& r : runs)
     if (r.copy_of) alike.insert({r.copy_of, r.face->index});
@@ -754,24 +753,22 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   for (const wefm_cad::CadFace& f : model.faces)
     for (const auto& loop : f.loops)
       for (const wefm_cad::CadEdgeUse& u : loop) ++face_uses[f.edges[static_cast<size_t>(u.edge)].id];
-  for (const auto& [id, en] : edge_nodes) whole.expect_model_edge(en.xyz, face_uses[id]);
-  const double time_weld = since(t_weld);
-  const auto t_check = Clock::now();
-  const ConformityCounts conf = whole.conformity();
-  const LambdaStats q = whole.lambda();
-  const double time_check = since(t_check);
-  const auto t_write = Clock::now();
-  int exit_code = kExitOk;
-  if (!make_parent_dirs(out_path, error) || write_mesh(out_path, format, whole.description(), error) != kExitOk) {
-    std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    exit_code = kExitIo;
-  }
-  const double time_write = since(t_write);
-  const double time_total = since(t_start);
+  for (const auto& [id, en] : plan.edge_nodes) whole.expect_model_edge(en.xyz, face_uses[id]);
+  return collapsed;
+}
 
+// Wall times of the steps, seconds.
+struct MeshModelTimes {
+  double total = 0, edges = 0, faces = 0, weld = 0, check = 0, write = 0;
+};
+
+// The per-face table, the model line and the failures on stderr. Returns the worst face's exit code.
+int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, const std::vector<FaceMeshRun>& runs,
+                  const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, const MeshModelTimes& t,
+                  size_t n_threads) {
   std::printf("%-6s %-10s %8s %9s %8s %8s %9s %8s  %s\n", "face", "surface", "elements", "lambda", "min", "<0.6", "score",
               "time", "status");
-  int failed = 0;
+  int failed = 0, exit_code = kExitOk;
   for (const FaceMeshRun& r : runs) {
     const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
     std::printf("f%03d   %-10s %8lld %9.4f %8.4f %7.1f%% %9.4f %7.2fs  %s\n", r.face->index, r.face->surface_type.c_str(),
@@ -782,18 +779,18 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   }
   std::printf("model: %lld nodes, %lld triangles, lambda_mesh %.4f, min lambda %.4f, %.1f%% below 0.6; %lld edges, "
               "%lld open, %lld non-manifold (%lld, %lld not explained by the B-rep); %d faces failed; %.2f s (read %.2f, BRepMesh %.2f, edges %.3f, faces %.2f with -j %zu, weld %.2f, check %.2f, write %.2f)\n",
-              static_cast<long long>(whole.nodes()), static_cast<long long>(whole.triangles()), q.lambda_mesh, q.lambda_min,
-              100 * q.fraction_below_0_6, static_cast<long long>(conf.edges), static_cast<long long>(conf.open_edges),
+              static_cast<long long>(whole.nodes()), static_cast<long long>(whole.triangles()), quality.lambda_mesh, quality.lambda_min,
+              100 * quality.fraction_below_0_6, static_cast<long long>(conf.edges), static_cast<long long>(conf.open_edges),
               static_cast<long long>(conf.non_manifold_edges), static_cast<long long>(conf.unexplained_open_edges),
-              static_cast<long long>(conf.unexplained_non_manifold_edges), failed, time_total, model.time_read, model.time_mesh, time_edges,
-              time_faces, n_threads, time_weld, time_check, time_write);
+              static_cast<long long>(conf.unexplained_non_manifold_edges), failed, t.total, model.time_read, model.time_mesh, t.edges,
+              t.faces, n_threads, t.weld, t.check, t.write);
   for (const FaceMeshRun& r : runs)
-    if (!r.mapped_refused.empty() && transfinite.count(r.face->index))
-      std::fprintf(stderr, "wefm: %s face %d (%s): meshed free, not transfinite: %s\n", model_path.c_str(), r.face->index,
+    if (!r.mapped_refused.empty() && q.transfinite.count(r.face->index))
+      std::fprintf(stderr, "wefm: %s face %d (%s): meshed free, not transfinite: %s\n", q.model_path.c_str(), r.face->index,
                    r.face->surface_type.c_str(), r.mapped_refused.c_str());
   for (const FaceMeshRun& r : runs)
     if (!r.reason.empty())
-      std::fprintf(stderr, "wefm: %s face %d (%s): %s\n", model_path.c_str(), r.face->index, r.face->surface_type.c_str(),
+      std::fprintf(stderr, "wefm: %s face %d (%s): %s\n", q.model_path.c_str(), r.face->index, r.face->surface_type.c_str(),
                    r.reason.c_str());
   if (conf.defects()) {
     // Not a success: the mesh is written so the defect can be looked at, but the exit says so.
@@ -803,54 +800,106 @@ int run_mesh_model(const std::vector<std::string>& argv) {
     std::fprintf(stderr,
                  "wefm: %s: the mesh does not conform to the model: %lld open and %lld non-manifold edges the B-rep does not "
                  "explain, %lld zero-area triangles (faces %s)\n",
-                 model_path.c_str(), static_cast<long long>(conf.unexplained_open_edges),
+                 q.model_path.c_str(), static_cast<long long>(conf.unexplained_open_edges),
                  static_cast<long long>(conf.unexplained_non_manifold_edges), static_cast<long long>(conf.zero_area_triangles),
                  list.c_str());
     exit_code = std::max<int>(exit_code, kExitSolver);
   }
+  return exit_code;
+}
 
-  if (args.has("report")) {
-    Json rep;
-    rep["model"] = model_path;
-    rep["size"] = size;
-    rep["output"] = out_path;
-    rep["nodes"] = whole.nodes();
-    rep["triangles"] = whole.triangles();
-    rep["lambda_mesh"] = q.lambda_mesh;
-    rep["lambda_min"] = q.lambda_min;
-    rep["fraction_below_0_6"] = q.fraction_below_0_6;
-    rep["bbox_diagonal"] = model.bbox_diagonal;
-    rep["conformity"] = {{"edges", conf.edges}, {"open_edges", conf.open_edges}, {"non_manifold_edges", conf.non_manifold_edges},
-                         {"brep_edge_segments", conf.brep_edge_segments},
-                         {"unexplained_open_edges", conf.unexplained_open_edges},
-                         {"unexplained_non_manifold_edges", conf.unexplained_non_manifold_edges},
-                         {"zero_area_triangles", conf.zero_area_triangles}, {"defect_faces", conf.defect_faces},
-                         {"defect_edges", defect_edges_json(conf)},
-                         {"collapsed_triangles", collapsed}};
-    rep["timings"] = {{"total", time_total}, {"read", model.time_read}, {"brepmesh", model.time_mesh},
-                      {"import", model.time_extract}, {"edges", time_edges}, {"faces_wall", time_faces}, {"jobs", n_threads},
-                      {"weld", time_weld}, {"check", time_check}, {"write", time_write}};
-    Json faces = Json::array();
-    for (const FaceMeshRun& r : runs) {
-      const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
-      faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
-                       {"reason", r.reason}, {"elements", fq.triangles},
-                       {"type", r.type},
-                       {"mapped_refused", r.mapped_refused.empty() ? Json(nullptr) : Json(r.mapped_refused)},
-                       {"size", face_sizes[static_cast<size_t>(&r - runs.data())]},
-                       {"width", std::isfinite(wefm_cad::face_width(*r.face)) ? Json(wefm_cad::face_width(*r.face)) : Json(nullptr)},
-                       {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},
-                       {"lambda_min", fq.triangles ? Json(fq.lambda_min) : Json(nullptr)},
-                       {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
-                       {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
-                       {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements},
-                       {"mesh_of_face", r.copy_of ? Json(r.copy_of) : Json(nullptr)},
-                       {"merged_faces", merged_into(virtual_faces, r.face->index)},
-                       {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
-    }
-    rep["faces"] = faces;
-    rep["merged_faces"] = merges_json(virtual_faces);
-    if (const int code = write_file_atomically(args.value("report"), rep.dump(1) + '\n', error)) {
+Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs,
+                 const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, int64_t collapsed,
+                 const MeshModelTimes& t, size_t n_threads, double size) {
+  Json rep;
+  rep["model"] = q.model_path;
+  rep["size"] = size;
+  rep["output"] = q.out_path;
+  rep["nodes"] = whole.nodes();
+  rep["triangles"] = whole.triangles();
+  rep["lambda_mesh"] = quality.lambda_mesh;
+  rep["lambda_min"] = quality.lambda_min;
+  rep["fraction_below_0_6"] = quality.fraction_below_0_6;
+  rep["bbox_diagonal"] = model.bbox_diagonal;
+  rep["conformity"] = {{"edges", conf.edges}, {"open_edges", conf.open_edges}, {"non_manifold_edges", conf.non_manifold_edges},
+                       {"brep_edge_segments", conf.brep_edge_segments},
+                       {"unexplained_open_edges", conf.unexplained_open_edges},
+                       {"unexplained_non_manifold_edges", conf.unexplained_non_manifold_edges},
+                       {"zero_area_triangles", conf.zero_area_triangles}, {"defect_faces", conf.defect_faces},
+                       {"defect_edges", defect_edges_json(conf)},
+                       {"collapsed_triangles", collapsed}};
+  rep["timings"] = {{"total", t.total}, {"read", model.time_read}, {"brepmesh", model.time_mesh},
+                    {"import", model.time_extract}, {"edges", t.edges}, {"faces_wall", t.faces}, {"jobs", n_threads},
+                    {"weld", t.weld}, {"check", t.check}, {"write", t.write}};
+  Json faces = Json::array();
+  for (const FaceMeshRun& r : runs) {
+    const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
+    faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
+                     {"reason", r.reason}, {"elements", fq.triangles},
+                     {"type", r.type},
+                     {"mapped_refused", r.mapped_refused.empty() ? Json(nullptr) : Json(r.mapped_refused)},
+                     {"size", plan.face_sizes[static_cast<size_t>(&r - runs.data())]},
+                     {"width", std::isfinite(wefm_cad::face_width(*r.face)) ? Json(wefm_cad::face_width(*r.face)) : Json(nullptr)},
+                     {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},
+                     {"lambda_min", fq.triangles ? Json(fq.lambda_min) : Json(nullptr)},
+                     {"fraction_below_0_6", fq.triangles ? Json(fq.fraction_below_0_6) : Json(nullptr)},
+                     {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
+                     {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements},
+                     {"mesh_of_face", r.copy_of ? Json(r.copy_of) : Json(nullptr)},
+                     {"merged_faces", merged_into(plan.virtual_faces, r.face->index)},
+                     {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
+  }
+  rep["faces"] = faces;
+  rep["merged_faces"] = merges_json(plan.virtual_faces);
+  return rep;
+}
+
+int run_mesh_model(const std::vector<std::string>& argv) {
+  MeshModelRequest q;
+  if (const int code = parse_request(argv, q); code >= 0) return code;
+  const auto t_start = Clock::now();
+  std::string error;
+  wefm_cad::CadModel model;
+  if (const int code = load_cad_model_via_plugin(q.model_path, q.tess, model, error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return code;
+  }
+  const double size = q.size_is_ratio ? q.size * model.bbox_diagonal : q.size;
+  ModelPlan plan;
+  if (const int code = plan_model(q, model, size, plan); code >= 0) return code;
+  MeshModelTimes t;
+  t.edges = plan.time;
+
+  std::vector<FaceMeshRun> runs(model.faces.size());
+  for (size_t i = 0; i < runs.size(); ++i) runs[i].face = &model.faces[i];
+  const size_t n_threads = std::min<size_t>(static_cast<size_t>(q.jobs), std::max<size_t>(1, runs.size()));
+  // Weld at a tolerance far below the size and the facet lengths, far above rounding.
+  const double weld_tolerance = 1e-7 * model.bbox_diagonal;
+  auto t0 = Clock::now();
+  mesh_all_faces(q, model, size, plan, runs, n_threads, weld_tolerance);
+  t.faces = since(t0);
+
+  t0 = Clock::now();
+  ModelMesh whole(weld_tolerance);
+  const int64_t collapsed = assemble(model, plan, runs, size, whole);
+  t.weld = since(t0);
+  t0 = Clock::now();
+  const ConformityCounts conf = whole.conformity();
+  const LambdaStats quality = whole.lambda();
+  t.check = since(t0);
+  t0 = Clock::now();
+  int write_code = kExitOk;
+  if (!make_parent_dirs(q.out_path, error) || write_mesh(q.out_path, q.format, whole.description(), error) != kExitOk) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    write_code = kExitIo;
+  }
+  t.write = since(t0);
+  t.total = since(t_start);
+
+  int exit_code = std::max(write_code, print_results(q, model, runs, whole, conf, quality, t, n_threads));
+  if (!q.report_path.empty()) {
+    const Json rep = report_json(q, model, plan, runs, whole, conf, quality, collapsed, t, n_threads, size);
+    if (const int code = write_file_atomically(q.report_path, rep.dump(1) + '\n', error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       exit_code = std::max<int>(exit_code, code);
     }
