@@ -88,8 +88,8 @@ class NodeStar {
   void reset(const Index* first, const Index* last) { first_ = first, last_ = last, q_.resize(static_cast<size_t>(last - first)); }
   const Index* first() const { return first_; }
   const Index* last() const { return last_; }
-  // Worst quality over the star, 1 for none. `reject(x)` true for a quality x that rejects the
-  // position however the rest turns out stops the count: the value returned is then <= x.
+  // Worst quality over the star, 1 for none. The count stops at a quality x for which `reject(x)`
+  // holds (x rejects the position whatever the other triangles give); the value returned is then <= x.
   template <class Reject>
   double worst(Reject reject, bool uv_checked = false) {
     double w = 1;
