@@ -17,25 +17,45 @@ std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const s
   struct Star {
     double sum, worst;
   };
+  // Lambda and its log per triangle at the current nodes (lambda -1: inverted in UV or flat in 3D),
+  // measured when first needed and forgotten when a node of the triangle moves.
+  std::vector<double> lam(tris.size()), log_lam(tris.size());
+  std::vector<char> known(tris.size(), 0);
+  auto measure = [&](size_t t, double& l, double& lg) {
+    const auto& T = tris[t];
+    const size_t a = static_cast<size_t>(T[0]), b = static_cast<size_t>(T[1]), c = static_cast<size_t>(T[2]);
+    l = -1, lg = 0;
+    if (!(orient2d(uv[a], uv[b], uv[c]) > 0)) return;
+    const double x = lo_lambda(xyz[a], xyz[b], xyz[c]);
+    if (x > 0) l = x, lg = std::log(x);
+  };
   // Sum of log lambda and worst lambda over the star of v; sum = -inf if a UV triangle inverts.
-  auto star = [&](Index v) {
+  // `cached`: the nodes are where the cache was measured. `reject(l)`: a lambda l that rejects the
+  // position whatever the rest stops the count; the worst returned is then <= l.
+  auto star = [&](Index v, bool cached, auto reject) {
     Star s{0.0, 1.0};
     for (Index k = start[static_cast<size_t>(v)]; k < start[static_cast<size_t>(v) + 1]; ++k) {
-      const auto& T = tris[static_cast<size_t>(items[static_cast<size_t>(k)])];
-      const size_t a = static_cast<size_t>(T[0]), b = static_cast<size_t>(T[1]), c = static_cast<size_t>(T[2]);
-      if (!(orient2d(uv[a], uv[b], uv[c]) > 0)) return Star{-1e300, -1.0};
-      const double l = lo_lambda(xyz[a], xyz[b], xyz[c]);
+      const size_t t = static_cast<size_t>(items[static_cast<size_t>(k)]);
+      double l, lg;
+      if (!cached) {
+        measure(t, l, lg);
+      } else {
+        if (!known[t]) measure(t, lam[t], log_lam[t]), known[t] = 1;
+        l = lam[t], lg = log_lam[t];
+      }
       if (!(l > 0)) return Star{-1e300, -1.0};
-      s.sum += std::log(l);
+      s.sum += lg;
       s.worst = std::min(s.worst, l);
+      if (reject(l)) return s;
     }
     return s;
   };
+  auto never = [](double) { return false; };
   std::int64_t moves = 0;
   for (Index v = fixed; v < static_cast<Index>(n); ++v) {
     const size_t vi = static_cast<size_t>(v);
     if (start[vi] == start[vi + 1]) continue;
-    const Star before = star(v);
+    const Star before = star(v, true, never);
     if (!(before.worst > 0)) continue;
     Eigen::Matrix<double, 3, 2> J;
     if (!map.jacobian(uv[vi], J)) continue;
@@ -69,36 +89,39 @@ std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const s
     edge /= edges;
     const Vec3 dir = g / slope;
     const P2 p0 = uv[vi];
-    auto try_step = [&](double t, Star& out) {
+    const double lowest = std::min(before.worst, floor);
+    Vec3 lifted, best_y;
+    // `full`: the sum is needed even where the move is rejected. Otherwise a UV triangle that
+    // inverts or a lambda below `lowest` rejects the step, and the step is not lifted or counted on.
+    auto try_step = [&](double t, Star& out, bool full) {
       const P2 p = p0 + back * (t * dir);
       Vec3 y;
       if (!map.lift(p, y)) return false;
+      lifted = y;
       uv[vi] = p, xyz[vi] = y;
-      out = star(v);
+      out = full ? star(v, false, never) : star(v, false, [lowest](double l) { return l < lowest; });
       uv[vi] = p0, xyz[vi] = x;
       return true;
     };
     // Parabola through f(0), its slope and f(t1): its top is the step, within half an edge.
     const double t1 = 0.05 * edge;
     Star s1;
-    if (!try_step(t1, s1)) continue;
+    if (!try_step(t1, s1, true)) continue;
     double best_t = 0;
     Star best = before;
     auto consider = [&](double t, const Star& s) {
-      if (s.sum > best.sum + 1e-12 && s.worst >= std::min(before.worst, floor)) best = s, best_t = t;
+      if (s.sum > best.sum + 1e-12 && s.worst >= lowest) best = s, best_t = t, best_y = lifted;
     };
     consider(t1, s1);
     const double curv = 2 * (before.sum + slope * t1 - s1.sum) / (t1 * t1);
     if (curv > 0) {
       const double t = std::min(slope / curv, 0.5 * edge);
       Star s;
-      if (std::fabs(t - t1) > 1e-3 * t1 && try_step(t, s)) consider(t, s);
+      if (std::fabs(t - t1) > 1e-3 * t1 && try_step(t, s, false)) consider(t, s);
     }
     if (best_t > 0) {
-      const P2 p = p0 + back * (best_t * dir);
-      Vec3 y;
-      map.lift(p, y);
-      uv[vi] = p, xyz[vi] = y;
+      uv[vi] = p0 + back * (best_t * dir), xyz[vi] = best_y;
+      for (Index k = start[vi]; k < start[vi + 1]; ++k) known[static_cast<size_t>(items[static_cast<size_t>(k)])] = 0;
       ++moves;
     }
   }

@@ -47,6 +47,15 @@ SizeField::SizeField(const std::vector<LoopNodes>& loops, double h, double grada
   for (size_t i = 0; i < src_.size(); ++i) items_[static_cast<size_t>(fill[cell_id(src_[i].c)]++)] = static_cast<Index>(i);
 }
 
+bool SizeField::beyond(double d2, double gap) const {
+  // True only where l + g sqrt(d2) >= l + gap however the terms round: the margin on the squared
+  // reach is far above the few roundings between the two; tiny reaches (where squares lose
+  // precision) are always measured.
+  const double r = gap / g_;
+  const double r2 = r * r;
+  return r2 > 1e-250 && d2 > r2 * (1 + 1e-6);
+}
+
 double SizeField::at(const Vec3& x) const {
   double best = h_;
   if (src_.empty()) return best;
@@ -63,7 +72,11 @@ double SizeField::at(const Vec3& x) const {
         const size_t id = (static_cast<size_t>(z) * static_cast<size_t>(n_[1]) + static_cast<size_t>(y)) * static_cast<size_t>(n_[0]) + static_cast<size_t>(xx);
         for (Index k = start_[id]; k < start_[id + 1]; ++k) {
           const Source& s = src_[static_cast<size_t>(items_[static_cast<size_t>(k)])];
-          best = std::min(best, s.l + g_ * (x - s.c).norm());
+          // l + g d >= l: a source no shorter than the best size cannot lower it.
+          if (!(s.l < best)) continue;
+          const double d2 = (x - s.c).squaredNorm();
+          if (beyond(d2, best - s.l)) continue;
+          best = std::min(best, s.l + g_ * std::sqrt(d2));
         }
       }
   return best;

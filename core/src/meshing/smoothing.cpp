@@ -35,6 +35,19 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
   const std::vector<Index>& start = around.start;
   const std::vector<Index>& items = around.items;
   std::vector<char> touched(tris.size(), 0);
+  // A triangle's quality is asked for once per edge; it cannot change before the triangle is
+  // flipped (no node moves here), and a flipped triangle is not looked at again in this pass. Kept
+  // per starting corner: lambda's rounding depends on the order of the corners.
+  constexpr double kUnknown = -2;  // below any quality (-1 inverted, lambda >= 0)
+  std::vector<double> known(3 * tris.size(), kUnknown);
+  auto known_quality = [&](Index u, int first) {
+    double& q = known[3 * static_cast<size_t>(u) + static_cast<size_t>(first)];
+    if (q == kUnknown) {
+      const Tri3& U = tris[static_cast<size_t>(u)];
+      q = quality(uv, xyz, U[static_cast<size_t>(first)], U[static_cast<size_t>((first + 1) % 3)], U[static_cast<size_t>((first + 2) % 3)]);
+    }
+    return q;
+  };
   std::int64_t flips = 0;
   for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
     for (int i = 0; i < 3 && !touched[static_cast<size_t>(t)]; ++i) {
@@ -53,8 +66,11 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
       if (s < 0 || s > t || touched[static_cast<size_t>(s)]) continue;
       const Tri3 S = tris[static_cast<size_t>(s)];
       const Index d = S[static_cast<size_t>(j)];
-      const double old_q = std::min(quality(uv, xyz, a, b, c), quality(uv, xyz, S[0], S[1], S[2]));
-      const double new_q = std::min(quality(uv, xyz, a, b, d), quality(uv, xyz, d, c, a));
+      const double old_q = std::min(known_quality(t, i), known_quality(s, 0));
+      // min(q1, q2) > x needs q1 > x, so the second triangle is measured only when the first passes.
+      const double q1 = quality(uv, xyz, a, b, d);
+      if (!(q1 > old_q + 1e-9)) continue;
+      const double new_q = std::min(q1, quality(uv, xyz, d, c, a));
       if (new_q > old_q + 1e-9) {
         tris[static_cast<size_t>(t)] = {a, b, d};
         tris[static_cast<size_t>(s)] = {d, c, a};
@@ -65,36 +81,101 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
   return flips;
 }
 
+// The triangles around one node and the qualities last measured on them, in the same order.
+class NodeStar {
+ public:
+  NodeStar(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, const std::vector<Tri3>& tris) : uv_(uv), xyz_(xyz), tris_(tris) {}
+  void reset(const Index* first, const Index* last) { first_ = first, last_ = last, q_.resize(static_cast<size_t>(last - first)); }
+  const Index* first() const { return first_; }
+  const Index* last() const { return last_; }
+  // Worst quality over the star, 1 for none. The count stops at a quality x for which `reject(x)`
+  // holds (x rejects the position whatever the other triangles give); the value returned is then <= x.
+  template <class Reject>
+  double worst(Reject reject, bool uv_checked = false) {
+    double w = 1;
+    for (const Index* t = first_; t != last_; ++t) {
+      const Tri3& T = tris_[static_cast<size_t>(*t)];
+      const double x = uv_checked ? lo_lambda(xyz_[static_cast<size_t>(T[0])], xyz_[static_cast<size_t>(T[1])], xyz_[static_cast<size_t>(T[2])])
+                                  : quality(uv_, xyz_, T[0], T[1], T[2]);
+      q_[static_cast<size_t>(t - first_)] = x;
+      w = std::min(w, x);
+      if (reject(x)) return w;
+    }
+    return w;
+  }
+  double worst() {
+    return worst([](double) { return false; });
+  }
+  // Sum of log quality from the last full count.
+  double sum_log() const {
+    double s = 0;
+    for (double x : q_) s += std::log(std::max(x, 1e-300));
+    return s;
+  }
+  // False when a UV triangle of the star is not positive: its quality would be -1, which rejects
+  // any move, so the move need not be lifted to 3D.
+  bool uv_positive() const {
+    for (const Index* t = first_; t != last_; ++t) {
+      const Tri3& T = tris_[static_cast<size_t>(*t)];
+      if (!(orient2d(uv_[static_cast<size_t>(T[0])], uv_[static_cast<size_t>(T[1])], uv_[static_cast<size_t>(T[2])]) > 0)) return false;
+    }
+    return true;
+  }
+
+ private:
+  const std::vector<P2>& uv_;
+  const std::vector<Vec3>& xyz_;
+  const std::vector<Tri3>& tris_;
+  const Index *first_ = nullptr, *last_ = nullptr;
+  std::vector<double> q_;
+};
+
+// Compass search on the worst element's quality around v, for nodes of poor elements.
+bool compass_search(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index v, NodeStar& star, const P2& centroid,
+                    const P2& ideal, const SurfaceMap& map) {
+  double now = star.worst();
+  if (!(now < 0.9)) return false;
+  bool kept = false;
+  const size_t vi = static_cast<size_t>(v);
+  P2 best_p = uv[vi];
+  Vec3 best_x = xyz[vi];
+  double step = 0.25 * (centroid - ideal).norm() + 0.1 * (best_p - centroid).norm() + 1e-300;
+  for (const Index* t = star.first(); t != star.last(); ++t)
+    for (Index w : tris[static_cast<size_t>(*t)]) step = std::max(step, 0.15 * (uv[static_cast<size_t>(w)] - best_p).norm());
+  P2 dirs[8];
+  for (int dir = 0; dir < 8; ++dir) dirs[dir] = P2(std::cos(dir * kPi / 4), std::sin(dir * kPi / 4));
+  for (int level = 0; level < 6; ++level, step *= 0.5)
+    for (const P2& dir : dirs) {
+      const P2 p = best_p + step * dir;
+      uv[vi] = p;
+      if (!star.uv_positive()) continue;
+      Vec3 x;
+      if (!map.lift(p, x)) continue;
+      xyz[vi] = x;
+      const double lim = now + 1e-12;
+      const double q = star.worst([lim](double y) { return y <= lim; }, true);
+      if (q > lim) now = q, best_p = p, best_x = x, kept = true;
+    }
+  uv[vi] = best_p, xyz[vi] = best_x;
+  return kept;
+}
+
 std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
-  std::vector<std::vector<Index>> around(uv.size());
-  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
-    for (Index v : tris[static_cast<size_t>(t)]) around[static_cast<size_t>(v)].push_back(t);
+  const NodeTriangles around = node_triangles(uv.size(), tris);
+  NodeStar star(uv, xyz, tris);
   std::int64_t moves = 0;
   for (Index v = fixed; v < static_cast<Index>(uv.size()); ++v) {
-    const auto& ts = around[static_cast<size_t>(v)];
-    if (ts.empty()) continue;
-    auto worst = [&]() {
-      double q = 1;
-      for (Index t : ts) {
-        const Tri3& T = tris[static_cast<size_t>(t)];
-        q = std::min(q, quality(uv, xyz, T[0], T[1], T[2]));
-      }
-      return q;
-    };
-    auto mean_log = [&]() {
-      double s = 0;
-      for (Index t : ts) {
-        const Tri3& T = tris[static_cast<size_t>(t)];
-        s += std::log(std::max(quality(uv, xyz, T[0], T[1], T[2]), 1e-300));
-      }
-      return s;
-    };
+    const size_t vi = static_cast<size_t>(v);
+    const Index* first = around.items.data() + around.start[vi];
+    const Index* last = around.items.data() + around.start[vi + 1];
+    if (first == last) continue;
+    star.reset(first, last);
     // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
     // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
     P2 centroid = P2::Zero(), ideal = P2::Zero();
     int count = 0;
-    for (Index t : ts) {
-      const Tri3& T = tris[static_cast<size_t>(t)];
+    for (const Index* t = first; t != last; ++t) {
+      const Tri3& T = tris[static_cast<size_t>(*t)];
       int k = 0;
       while (T[static_cast<size_t>(k)] != v) ++k;
       const P2 a = uv[static_cast<size_t>(T[static_cast<size_t>((k + 1) % 3)])], b = uv[static_cast<size_t>(T[static_cast<size_t>((k + 2) % 3)])];
@@ -104,44 +185,27 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
       count += 2;
     }
     centroid /= count;
-    ideal /= static_cast<double>(ts.size());
-    const double before = worst(), before_mean = mean_log();
-    const P2 p0 = uv[static_cast<size_t>(v)];
-    const Vec3 x0 = xyz[static_cast<size_t>(v)];
+    ideal /= static_cast<double>(last - first);
+    const double before = star.worst(), before_mean = star.sum_log();
+    const P2 p0 = uv[vi];
+    const Vec3 x0 = xyz[vi];
     bool kept = false;
     for (const P2& target : {ideal, centroid})
       for (double step : {1.0, 0.5}) {
         if (kept) break;
         const P2 p = p0 + step * (target - p0);
+        uv[vi] = p;
+        if (!star.uv_positive()) continue;
         Vec3 x;
         if (!map.lift(p, x)) continue;
-        uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
-        const double after = worst();
+        xyz[vi] = x;
+        const double lim = before - 1e-12;
+        const double after = star.worst([lim](double y) { return y < lim; }, true);
         // Better worst element, or as good a worst element and a better geometric mean.
-        if (after > before + 1e-12 || (after >= before - 1e-12 && after > 0 && mean_log() > before_mean + 1e-12)) kept = true;
+        if (after > before + 1e-12 || (after >= lim && after > 0 && star.sum_log() > before_mean + 1e-12)) kept = true;
       }
-    if (!kept) uv[static_cast<size_t>(v)] = p0, xyz[static_cast<size_t>(v)] = x0;
-    // Nodes of poor elements: compass search on the worst element's quality.
-    double now = worst();
-    if (now < 0.9) {
-      P2 best_p = uv[static_cast<size_t>(v)];
-      Vec3 best_x = xyz[static_cast<size_t>(v)];
-      double step = 0.25 * (centroid - ideal).norm() + 0.1 * (best_p - centroid).norm() + 1e-300;
-      for (const Index t : ts)
-        for (Index w : tris[static_cast<size_t>(t)]) step = std::max(step, 0.15 * (uv[static_cast<size_t>(w)] - best_p).norm());
-      for (int level = 0; level < 6; ++level, step *= 0.5)
-        for (int dir = 0; dir < 8; ++dir) {
-          const P2 p = best_p + step * P2(std::cos(dir * kPi / 4), std::sin(dir * kPi / 4));
-          Vec3 x;
-          if (!map.lift(p, x)) continue;
-          uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
-          const double q = worst();
-          if (q > now + 1e-12) {
-            now = q, best_p = p, best_x = x, kept = true;
-          }
-        }
-      uv[static_cast<size_t>(v)] = best_p, xyz[static_cast<size_t>(v)] = best_x;
-    }
+    if (!kept) uv[vi] = p0, xyz[vi] = x0;
+    if (compass_search(uv, xyz, tris, v, star, centroid, ideal, map)) kept = true;
     if (kept) ++moves;
   }
   return moves;

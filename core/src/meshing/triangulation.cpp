@@ -136,15 +136,13 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
   }
   if (t0 < 0 || !tris_[t0].inside) return -1;
   // Cavity: triangles whose circumcircle holds p, reached without crossing a segment.
-  std::vector<Index> cav{t0};
+  std::vector<Index>& cav = cav_;
+  cav.assign(1, t0);
   std::vector<char>& mark = mark_;
   if (mark.size() < tris_.size()) mark.resize(tris_.size(), 0);
   mark[t0] = 1;
-  struct Rim {
-    Index a, b, out;
-    bool c;
-  };
-  std::vector<Rim> rim;
+  std::vector<Rim>& rim = rim_;
+  rim.clear();
   for (size_t k = 0; k < cav.size(); ++k) {
     const T& tt = tris_[cav[k]];
     for (int i = 0; i < 3; ++i) {
@@ -196,7 +194,8 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
   const Index v = static_cast<Index>(pts_.size());
   pts_.push_back(p);
   vtri_.push_back(-1);
-  std::vector<Index> made(rim.size());
+  std::vector<Index>& made = made_;
+  made.resize(rim.size());
   for (size_t k = 0; k < rim.size(); ++k) {
     const Index t = new_tri(rim[k].a, rim[k].b, v);
     tris_[t].inside = inside;

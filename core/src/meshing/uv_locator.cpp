@@ -56,6 +56,7 @@ UvLocator::UvLocator(const TriMesh& mesh, const Topology& topo, const VectorXc& 
     const double a2 = 0.5 * std::fabs(e1.x() * e2.y() - e1.y() * e2.x());
     scale_[t] = a2 > 0 ? std::sqrt(a3 / a2) : 0.0;
   }
+  reach_ = kReach * std::max((hi_ - lo_).norm(), 1e-300);
   const P2 ext = (hi_ - lo_).cwiseMax(P2(1e-300, 1e-300));
   const double cells = std::max<double>(1.0, static_cast<double>(nt));
   const double c = std::sqrt(ext.x() * ext.y() / cells);
@@ -132,10 +133,11 @@ P2 UvLocator::within_reach(const P2& p) const {
   // Halved differences cannot overflow for finite operands.
   const P2 centre = 0.5 * lo_ + 0.5 * hi_;
   const P2 half = 0.5 * p - 0.5 * centre;
+  // |half| <= |x| + |y|: a point well within reach by that bound needs no exact length.
+  if (2 * (std::fabs(half.x()) + std::fabs(half.y())) <= reach_ * (1 - 1e-9)) return p;
   const double len = std::hypot(half.x(), half.y());
-  const double reach = kReach * std::max((hi_ - lo_).norm(), 1e-300);
-  if (!(2 * len > reach)) return p;
-  return centre + half * (reach / len);
+  if (!(2 * len > reach_)) return p;
+  return centre + half * (reach_ / len);
 }
 
 void UvLocator::nearest_on_boundary(const P2& p, int ci, int cj, UvHit& hit) const {

@@ -23,6 +23,9 @@ class SizeField {
   double h() const { return h_; }
 
  private:
+  // True when a source at squared distance d2 cannot reach below its length + gap.
+  bool beyond(double d2, double gap) const;
+
   struct Source {
     Vec3 c;
     double l;

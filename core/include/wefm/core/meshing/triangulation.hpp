@@ -84,6 +84,13 @@ class Triangulation {
   std::vector<Index> free_;
   Index last_ = 0;
   std::vector<char> mark_;
+  // insert's working lists, kept between calls so that each insertion does not allocate them.
+  struct Rim {
+    Index a, b, out;
+    bool c;
+  };
+  std::vector<Index> cav_, made_;
+  std::vector<Rim> rim_;
   std::set<std::pair<Index, Index>> scars_;  // internal node pairs (smaller first) of scar segments
 };
 

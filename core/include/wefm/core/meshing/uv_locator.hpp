@@ -37,6 +37,7 @@ class UvLocator {
   std::vector<P2> uv_;  // 3 per triangle
   std::vector<double> scale_;
   P2 lo_, hi_, cell_;
+  double reach_ = 0;  // kReach domain diagonals
   int nx_ = 1, ny_ = 1;
   std::vector<Index> start_, items_;
 };
