@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "owned.hpp"
+#include "lo_lambda.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "flatten_settings.hpp"
@@ -78,16 +79,6 @@ struct MeshArrays {
   std::vector<int32_t> elements;
   int npe = 3;
 };
-
-double lo_lambda(const double* a, const double* b, const double* c) {
-  double e1[3], e2[3], e3[3];
-  for (int k = 0; k < 3; ++k) e1[k] = b[k] - a[k], e2[k] = c[k] - a[k], e3[k] = c[k] - b[k];
-  const double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
-  const double area = 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
-  double s = 0;
-  for (int k = 0; k < 3; ++k) s += e1[k] * e1[k] + e2[k] * e2[k] + e3[k] * e3[k];
-  return s > 0 ? 4 * std::sqrt(3.0) * area / s : 0;
-}
 
 // The 3D mesh: a UV per node (the domain mesh's nodes), one face group.
 int write_3d_mesh(const std::string& path, const MeshArrays& m, std::string& error) {
