@@ -6,11 +6,10 @@
 #include <memory>
 #include <vector>
 
+#include "wefm/core/linalg/backend.hpp"
 #include "wefm/core/sys/types.hpp"
 
 namespace wefm {
-
-enum class Backend { Auto, Cholmod, Eigen };
 
 struct FactorCounters {
   std::int64_t analyses = 0, factorizations = 0, solves = 0;

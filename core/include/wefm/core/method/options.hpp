@@ -1,6 +1,6 @@
 #pragma once
 // Solver options; defaults equal the C API's wefm_options_init.
-#include "wefm/core/linalg/sparse_cholesky.hpp"
+#include "wefm/core/linalg/backend.hpp"
 #include "wefm/core/mesh/topology.hpp"
 
 namespace wefm {
