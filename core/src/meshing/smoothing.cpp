@@ -19,6 +19,10 @@ using Tri3 = std::array<Index, 3>;
 // min lambda for 0.0005 more.
 constexpr int kOptimisePasses = 3;
 constexpr double kOptimiseFloor = 0.8;
+// Issue 28's floor: triangles still below it after smoothing get a node of their own (split_pass).
+constexpr double kSplitBelow = 0.3;
+// Rounds of split_pass: a split's new triangles may need one more.
+constexpr int kSplitRounds = 3;
 
 double quality(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index a, Index b, Index c) {
   if (!(orient2d(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], uv[static_cast<size_t>(c)]) > 0)) return -1;
@@ -65,86 +69,153 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
   return flips;
 }
 
+// Moves node v (its triangles ts) towards better shaped elements; true when it moved.
+bool move_node(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index v, const std::vector<Index>& ts,
+               const SurfaceMap& map) {
+  auto worst = [&]() {
+    double q = 1;
+    for (Index t : ts) {
+      const Tri3& T = tris[static_cast<size_t>(t)];
+      q = std::min(q, quality(uv, xyz, T[0], T[1], T[2]));
+    }
+    return q;
+  };
+  auto mean_log = [&]() {
+    double s = 0;
+    for (Index t : ts) {
+      const Tri3& T = tris[static_cast<size_t>(t)];
+      s += std::log(std::max(quality(uv, xyz, T[0], T[1], T[2]), 1e-300));
+    }
+    return s;
+  };
+  // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
+  // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
+  P2 centroid = P2::Zero(), ideal = P2::Zero();
+  int count = 0;
+  for (Index t : ts) {
+    const Tri3& T = tris[static_cast<size_t>(t)];
+    int k = 0;
+    while (T[static_cast<size_t>(k)] != v) ++k;
+    const P2 a = uv[static_cast<size_t>(T[static_cast<size_t>((k + 1) % 3)])], b = uv[static_cast<size_t>(T[static_cast<size_t>((k + 2) % 3)])];
+    const P2 e = b - a;
+    ideal += 0.5 * (a + b) + (std::sqrt(3.0) / 2) * P2(-e.y(), e.x());
+    centroid += a + b;
+    count += 2;
+  }
+  centroid /= count;
+  ideal /= static_cast<double>(ts.size());
+  const double before = worst(), before_mean = mean_log();
+  const P2 p0 = uv[static_cast<size_t>(v)];
+  const Vec3 x0 = xyz[static_cast<size_t>(v)];
+  bool kept = false;
+  for (const P2& target : {ideal, centroid})
+    for (double step : {1.0, 0.5}) {
+      if (kept) break;
+      const P2 p = p0 + step * (target - p0);
+      Vec3 x;
+      if (!map.lift(p, x)) continue;
+      uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
+      const double after = worst();
+      // Better worst element, or as good a worst element and a better geometric mean.
+      if (after > before + 1e-12 || (after >= before - 1e-12 && after > 0 && mean_log() > before_mean + 1e-12)) kept = true;
+    }
+  if (!kept) uv[static_cast<size_t>(v)] = p0, xyz[static_cast<size_t>(v)] = x0;
+  // Nodes of poor elements: compass search on the worst element's quality.
+  double now = worst();
+  if (now < 0.9) {
+    P2 best_p = uv[static_cast<size_t>(v)];
+    Vec3 best_x = xyz[static_cast<size_t>(v)];
+    double step = 0.25 * (centroid - ideal).norm() + 0.1 * (best_p - centroid).norm() + 1e-300;
+    for (const Index t : ts)
+      for (Index w : tris[static_cast<size_t>(t)]) step = std::max(step, 0.15 * (uv[static_cast<size_t>(w)] - best_p).norm());
+    for (int level = 0; level < 6; ++level, step *= 0.5)
+      for (int dir = 0; dir < 8; ++dir) {
+        const P2 p = best_p + step * P2(std::cos(dir * kPi / 4), std::sin(dir * kPi / 4));
+        Vec3 x;
+        if (!map.lift(p, x)) continue;
+        uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
+        const double q = worst();
+        if (q > now + 1e-12) {
+          now = q, best_p = p, best_x = x, kept = true;
+        }
+      }
+    uv[static_cast<size_t>(v)] = best_p, xyz[static_cast<size_t>(v)] = best_x;
+  }
+  return kept;
+}
+
 std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
   std::vector<std::vector<Index>> around(uv.size());
   for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
     for (Index v : tris[static_cast<size_t>(t)]) around[static_cast<size_t>(v)].push_back(t);
   std::int64_t moves = 0;
-  for (Index v = fixed; v < static_cast<Index>(uv.size()); ++v) {
-    const auto& ts = around[static_cast<size_t>(v)];
-    if (ts.empty()) continue;
-    auto worst = [&]() {
-      double q = 1;
-      for (Index t : ts) {
-        const Tri3& T = tris[static_cast<size_t>(t)];
-        q = std::min(q, quality(uv, xyz, T[0], T[1], T[2]));
-      }
-      return q;
-    };
-    auto mean_log = [&]() {
-      double s = 0;
-      for (Index t : ts) {
-        const Tri3& T = tris[static_cast<size_t>(t)];
-        s += std::log(std::max(quality(uv, xyz, T[0], T[1], T[2]), 1e-300));
-      }
-      return s;
-    };
-    // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
-    // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
-    P2 centroid = P2::Zero(), ideal = P2::Zero();
-    int count = 0;
-    for (Index t : ts) {
-      const Tri3& T = tris[static_cast<size_t>(t)];
-      int k = 0;
-      while (T[static_cast<size_t>(k)] != v) ++k;
-      const P2 a = uv[static_cast<size_t>(T[static_cast<size_t>((k + 1) % 3)])], b = uv[static_cast<size_t>(T[static_cast<size_t>((k + 2) % 3)])];
-      const P2 e = b - a;
-      ideal += 0.5 * (a + b) + (std::sqrt(3.0) / 2) * P2(-e.y(), e.x());
-      centroid += a + b;
-      count += 2;
-    }
-    centroid /= count;
-    ideal /= static_cast<double>(ts.size());
-    const double before = worst(), before_mean = mean_log();
-    const P2 p0 = uv[static_cast<size_t>(v)];
-    const Vec3 x0 = xyz[static_cast<size_t>(v)];
-    bool kept = false;
-    for (const P2& target : {ideal, centroid})
-      for (double step : {1.0, 0.5}) {
-        if (kept) break;
-        const P2 p = p0 + step * (target - p0);
-        Vec3 x;
-        if (!map.lift(p, x)) continue;
-        uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
-        const double after = worst();
-        // Better worst element, or as good a worst element and a better geometric mean.
-        if (after > before + 1e-12 || (after >= before - 1e-12 && after > 0 && mean_log() > before_mean + 1e-12)) kept = true;
-      }
-    if (!kept) uv[static_cast<size_t>(v)] = p0, xyz[static_cast<size_t>(v)] = x0;
-    // Nodes of poor elements: compass search on the worst element's quality.
-    double now = worst();
-    if (now < 0.9) {
-      P2 best_p = uv[static_cast<size_t>(v)];
-      Vec3 best_x = xyz[static_cast<size_t>(v)];
-      double step = 0.25 * (centroid - ideal).norm() + 0.1 * (best_p - centroid).norm() + 1e-300;
-      for (const Index t : ts)
-        for (Index w : tris[static_cast<size_t>(t)]) step = std::max(step, 0.15 * (uv[static_cast<size_t>(w)] - best_p).norm());
-      for (int level = 0; level < 6; ++level, step *= 0.5)
-        for (int dir = 0; dir < 8; ++dir) {
-          const P2 p = best_p + step * P2(std::cos(dir * kPi / 4), std::sin(dir * kPi / 4));
-          Vec3 x;
-          if (!map.lift(p, x)) continue;
-          uv[static_cast<size_t>(v)] = p, xyz[static_cast<size_t>(v)] = x;
-          const double q = worst();
-          if (q > now + 1e-12) {
-            now = q, best_p = p, best_x = x, kept = true;
-          }
-        }
-      uv[static_cast<size_t>(v)] = best_p, xyz[static_cast<size_t>(v)] = best_x;
-    }
-    if (kept) ++moves;
-  }
+  for (Index v = fixed; v < static_cast<Index>(uv.size()); ++v)
+    if (!around[static_cast<size_t>(v)].empty() && move_node(uv, xyz, tris, v, around[static_cast<size_t>(v)], map)) ++moves;
   return moves;
+}
+
+// Splits, for each triangle below kSplitBelow, its longest edge inside the domain at the UV midpoint
+// and moves the new node for its star; the split is kept only when the star's worst element beats
+// the two triangles it replaced. A needle between a fine boundary chain and a coarse one across a
+// strip narrower than h has no interior node at all, and no move of the fixed nodes mends it.
+std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, const SurfaceMap& map) {
+  std::vector<Index> bad;
+  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t) {
+    const Tri3& T = tris[static_cast<size_t>(t)];
+    const double q = quality(uv, xyz, T[0], T[1], T[2]);
+    if (q >= 0 && q < kSplitBelow) bad.push_back(t);
+  }
+  if (bad.empty()) return 0;
+  // As at the pass's start; changed triangles are marked and their neighbours found by content.
+  const NodeTriangles around = node_triangles(uv.size(), tris);
+  std::vector<char> touched(tris.size(), 0);
+  std::int64_t splits = 0;
+  for (const Index t : bad) {
+    if (touched[static_cast<size_t>(t)]) continue;
+    const Tri3 T = tris[static_cast<size_t>(t)];
+    Index s = -1, a = -1, b = -1, c = -1, d = -1;
+    double longest = -1;
+    for (int i = 0; i < 3; ++i) {
+      const Index ai = T[static_cast<size_t>(i)], bi = T[static_cast<size_t>((i + 1) % 3)], ci = T[static_cast<size_t>((i + 2) % 3)];
+      const double len = (xyz[static_cast<size_t>(bi)] - xyz[static_cast<size_t>(ci)]).norm();
+      if (len <= longest) continue;
+      for (Index k = around.start[static_cast<size_t>(bi)]; k < around.start[static_cast<size_t>(bi) + 1]; ++k) {
+        const Index u = around.items[static_cast<size_t>(k)];
+        if (u == t || touched[static_cast<size_t>(u)]) continue;
+        const Tri3& U = tris[static_cast<size_t>(u)];
+        for (int m = 0; m < 3; ++m)
+          if (U[static_cast<size_t>((m + 1) % 3)] == ci && U[static_cast<size_t>((m + 2) % 3)] == bi)
+            s = u, a = ai, b = bi, c = ci, d = U[static_cast<size_t>(m)], longest = len;
+      }
+    }
+    if (s < 0) continue;
+    const Tri3 S = tris[static_cast<size_t>(s)];
+    const double before = std::min(quality(uv, xyz, T[0], T[1], T[2]), quality(uv, xyz, S[0], S[1], S[2]));
+    const P2 p = 0.5 * (uv[static_cast<size_t>(b)] + uv[static_cast<size_t>(c)]);
+    Vec3 x;
+    if (!map.lift(p, x)) continue;
+    const Index v = static_cast<Index>(uv.size());
+    uv.push_back(p), xyz.push_back(x);
+    const Index t2 = static_cast<Index>(tris.size()), s2 = t2 + 1;
+    tris[static_cast<size_t>(t)] = {a, b, v}, tris[static_cast<size_t>(s)] = {d, c, v};
+    tris.push_back({a, v, c}), tris.push_back({d, v, b});
+    const std::vector<Index> star{t, s, t2, s2};
+    move_node(uv, xyz, tris, v, star, map);
+    double after = 1;
+    for (const Index u : star) {
+      const Tri3& U = tris[static_cast<size_t>(u)];
+      after = std::min(after, quality(uv, xyz, U[0], U[1], U[2]));
+    }
+    if (after > before + 1e-9) {
+      touched[static_cast<size_t>(t)] = touched[static_cast<size_t>(s)] = 1;
+      ++splits;
+    } else {
+      tris[static_cast<size_t>(t)] = T, tris[static_cast<size_t>(s)] = S;
+      tris.resize(static_cast<size_t>(t2));
+      uv.pop_back(), xyz.pop_back();
+    }
+  }
+  return splits;
 }
 
 }  // namespace
@@ -171,6 +242,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
     if (optimise_nodes(uv, xyz, tris, fixed, map, kOptimiseFloor) == 0) break;
     flips();
   }
+  for (int it = 0; it < kSplitRounds && split_pass(uv, xyz, tris, map) > 0; ++it) flips();
   return total;
 }
 
