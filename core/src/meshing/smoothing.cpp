@@ -155,10 +155,12 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
 }
 
 // Splits, for each triangle below kSplitBelow, its longest edge inside the domain at the UV midpoint
-// and moves the new node for its star; the split is kept only when the star's worst element beats
-// the two triangles it replaced. A needle between a fine boundary chain and a coarse one across a
-// strip narrower than h has no interior node at all, and no move of the fixed nodes mends it.
-std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, const SurfaceMap& map) {
+// and moves the new node, then the corners of the two split triangles that are inside the domain,
+// then the new node again; kept only when the worst triangle at those corners beats the worst before.
+// A needle between a fine boundary chain and a coarse one across a strip narrower than h has no
+// interior node at all, and a sliver whose apex sits on a boundary edge cannot leave it while its
+// other triangles hold it there: no move of the existing nodes mends either.
+std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
   std::vector<Index> bad;
   for (Index t = 0; t < static_cast<Index>(tris.size()); ++t) {
     const Tri3& T = tris[static_cast<size_t>(t)];
@@ -169,6 +171,7 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
   // As at the pass's start; changed triangles are marked and their neighbours found by content.
   const NodeTriangles around = node_triangles(uv.size(), tris);
   std::vector<char> touched(tris.size(), 0);
+  const Index first_new = static_cast<Index>(tris.size());
   std::int64_t splits = 0;
   for (const Index t : bad) {
     if (touched[static_cast<size_t>(t)]) continue;
@@ -190,10 +193,36 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     }
     if (s < 0) continue;
     const Tri3 S = tris[static_cast<size_t>(s)];
-    const double before = std::min(quality(uv, xyz, T[0], T[1], T[2]), quality(uv, xyz, S[0], S[1], S[2]));
+    // Judged on every triangle at the four corners: the split also lets the corners inside the
+    // domain move (a sliver's apex a rounding off a boundary edge), which changes their other triangles.
+    const std::array<Index, 4> corners{a, b, c, d};
+    // A node's triangles: those around it at the pass's start that still hold it, and the new ones.
+    auto star_of = [&](Index w) {
+      std::vector<Index> st;
+      auto holds = [&](Index u) {
+        const Tri3& U = tris[static_cast<size_t>(u)];
+        return U[0] == w || U[1] == w || U[2] == w;
+      };
+      if (static_cast<size_t>(w) + 1 < around.start.size())
+        for (Index k = around.start[static_cast<size_t>(w)]; k < around.start[static_cast<size_t>(w) + 1]; ++k)
+          if (holds(around.items[static_cast<size_t>(k)])) st.push_back(around.items[static_cast<size_t>(k)]);
+      for (Index u = first_new; u < static_cast<Index>(tris.size()); ++u)
+        if (holds(u)) st.push_back(u);
+      return st;
+    };
+    auto worst_near = [&]() {
+      double q = 1;
+      for (Index w : corners)
+        for (Index u : star_of(w)) q = std::min(q, quality(uv, xyz, tris[static_cast<size_t>(u)][0], tris[static_cast<size_t>(u)][1], tris[static_cast<size_t>(u)][2]));
+      return q;
+    };
+    const double before = worst_near();
     const P2 p = 0.5 * (uv[static_cast<size_t>(b)] + uv[static_cast<size_t>(c)]);
     Vec3 x;
     if (!map.lift(p, x)) continue;
+    std::array<P2, 4> uv0;
+    std::array<Vec3, 4> xyz0;
+    for (size_t k = 0; k < 4; ++k) uv0[k] = uv[static_cast<size_t>(corners[k])], xyz0[k] = xyz[static_cast<size_t>(corners[k])];
     const Index v = static_cast<Index>(uv.size());
     uv.push_back(p), xyz.push_back(x);
     const Index t2 = static_cast<Index>(tris.size()), s2 = t2 + 1;
@@ -201,18 +230,18 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     tris.push_back({a, v, c}), tris.push_back({d, v, b});
     const std::vector<Index> star{t, s, t2, s2};
     move_node(uv, xyz, tris, v, star, map);
-    double after = 1;
-    for (const Index u : star) {
-      const Tri3& U = tris[static_cast<size_t>(u)];
-      after = std::min(after, quality(uv, xyz, U[0], U[1], U[2]));
-    }
-    if (after > before + 1e-9) {
+    bool inner = false;
+    for (Index w : corners)
+      if (w >= fixed) move_node(uv, xyz, tris, w, star_of(w), map), inner = true;
+    if (inner) move_node(uv, xyz, tris, v, star, map);
+    if (worst_near() > before + 1e-9) {
       touched[static_cast<size_t>(t)] = touched[static_cast<size_t>(s)] = 1;
       ++splits;
     } else {
       tris[static_cast<size_t>(t)] = T, tris[static_cast<size_t>(s)] = S;
       tris.resize(static_cast<size_t>(t2));
       uv.pop_back(), xyz.pop_back();
+      for (size_t k = 0; k < 4; ++k) uv[static_cast<size_t>(corners[k])] = uv0[k], xyz[static_cast<size_t>(corners[k])] = xyz0[k];
     }
   }
   return splits;
@@ -242,7 +271,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
     if (optimise_nodes(uv, xyz, tris, fixed, map, kOptimiseFloor) == 0) break;
     flips();
   }
-  for (int it = 0; it < kSplitRounds && split_pass(uv, xyz, tris, map) > 0; ++it) flips();
+  for (int it = 0; it < kSplitRounds && split_pass(uv, xyz, tris, fixed, map) > 0; ++it) flips();
   return total;
 }
 
