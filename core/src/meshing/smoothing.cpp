@@ -156,7 +156,8 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
 
 // Splits, for each triangle below kSplitBelow, its longest edge inside the domain at the UV midpoint
 // and moves the new node, then the corners of the two split triangles that are inside the domain,
-// then the new node again; kept only when the worst triangle at those corners beats the worst before.
+// then the new node again; kept only when the worst of the triangles this changed beats the worst
+// before.
 // A needle between a fine boundary chain and a coarse one across a strip narrower than h has no
 // interior node at all, and a sliver whose apex sits on a boundary edge cannot leave it while its
 // other triangles hold it there: no move of the existing nodes mends either.
@@ -193,8 +194,8 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     }
     if (s < 0) continue;
     const Tri3 S = tris[static_cast<size_t>(s)];
-    // Judged on every triangle at the four corners: the split also lets the corners inside the
-    // domain move (a sliver's apex a rounding off a boundary edge), which changes their other triangles.
+    // The split also lets the corners inside the domain move (a sliver's apex a rounding off a
+    // boundary edge), which changes their other triangles.
     const std::array<Index, 4> corners{a, b, c, d};
     // A node's triangles: those around it at the pass's start that still hold it, and the new ones.
     auto star_of = [&](Index w) {
@@ -210,13 +211,19 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
         if (holds(u)) st.push_back(u);
       return st;
     };
-    auto worst_near = [&]() {
+    // The worst of the given triangles and of the triangles at the corners inside the domain: the
+    // triangles a split and its moves change (a fan of needles at a boundary corner keeps the
+    // corner's worst until its last needle is split, so the corners' other triangles are not judged).
+    auto worst_of = [&](const std::vector<Index>& ts) {
       double q = 1;
+      std::vector<Index> all = ts;
       for (Index w : corners)
-        for (Index u : star_of(w)) q = std::min(q, quality(uv, xyz, tris[static_cast<size_t>(u)][0], tris[static_cast<size_t>(u)][1], tris[static_cast<size_t>(u)][2]));
+        if (w >= fixed)
+          for (Index u : star_of(w)) all.push_back(u);
+      for (Index u : all) q = std::min(q, quality(uv, xyz, tris[static_cast<size_t>(u)][0], tris[static_cast<size_t>(u)][1], tris[static_cast<size_t>(u)][2]));
       return q;
     };
-    const double before = worst_near();
+    const double before = worst_of({t, s});
     const P2 p = 0.5 * (uv[static_cast<size_t>(b)] + uv[static_cast<size_t>(c)]);
     Vec3 x;
     if (!map.lift(p, x)) continue;
@@ -234,7 +241,7 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     for (Index w : corners)
       if (w >= fixed) move_node(uv, xyz, tris, w, star_of(w), map), inner = true;
     if (inner) move_node(uv, xyz, tris, v, star, map);
-    if (worst_near() > before + 1e-9) {
+    if (worst_of(star) > before + 1e-9) {
       touched[static_cast<size_t>(t)] = touched[static_cast<size_t>(s)] = 1;
       ++splits;
     } else {
