@@ -19,6 +19,10 @@ using Tri3 = std::array<Index, 3>;
 // min lambda for 0.0005 more.
 constexpr int kOptimisePasses = 3;
 constexpr double kOptimiseFloor = 0.8;
+// Issue 28's floor: triangles still below it after smoothing get a node of their own (split_pass).
+constexpr double kSplitBelow = 0.3;
+// Rounds of split_pass: a split's new triangles may need one more.
+constexpr int kSplitRounds = 3;
 
 double quality(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index a, Index b, Index c) {
   if (!(orient2d(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], uv[static_cast<size_t>(c)]) > 0)) return -1;
@@ -160,6 +164,49 @@ bool compass_search(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vect
   return kept;
 }
 
+// Moves node v (its triangles: `star`, reset to them) towards better shaped elements; true when it
+// moved.
+bool move_node(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index v, NodeStar& star, const SurfaceMap& map) {
+  const size_t vi = static_cast<size_t>(v);
+  // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
+  // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
+  P2 centroid = P2::Zero(), ideal = P2::Zero();
+  int count = 0;
+  for (const Index* t = star.first(); t != star.last(); ++t) {
+    const Tri3& T = tris[static_cast<size_t>(*t)];
+    int k = 0;
+    while (T[static_cast<size_t>(k)] != v) ++k;
+    const P2 a = uv[static_cast<size_t>(T[static_cast<size_t>((k + 1) % 3)])], b = uv[static_cast<size_t>(T[static_cast<size_t>((k + 2) % 3)])];
+    const P2 e = b - a;
+    ideal += 0.5 * (a + b) + (std::sqrt(3.0) / 2) * P2(-e.y(), e.x());
+    centroid += a + b;
+    count += 2;
+  }
+  centroid /= count;
+  ideal /= static_cast<double>(star.last() - star.first());
+  const double before = star.worst(), before_mean = star.sum_log();
+  const P2 p0 = uv[vi];
+  const Vec3 x0 = xyz[vi];
+  bool kept = false;
+  for (const P2& target : {ideal, centroid})
+    for (double step : {1.0, 0.5}) {
+      if (kept) break;
+      const P2 p = p0 + step * (target - p0);
+      uv[vi] = p;
+      if (!star.uv_positive()) continue;
+      Vec3 x;
+      if (!map.lift(p, x)) continue;
+      xyz[vi] = x;
+      const double lim = before - 1e-12;
+      const double after = star.worst([lim](double y) { return y < lim; }, true);
+      // Better worst element, or as good a worst element and a better geometric mean.
+      if (after > before + 1e-12 || (after >= lim && after > 0 && star.sum_log() > before_mean + 1e-12)) kept = true;
+    }
+  if (!kept) uv[vi] = p0, xyz[vi] = x0;
+  if (compass_search(uv, xyz, tris, v, star, centroid, ideal, map)) kept = true;
+  return kept;
+}
+
 std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
   const NodeTriangles around = node_triangles(uv.size(), tris);
   NodeStar star(uv, xyz, tris);
@@ -170,45 +217,114 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
     const Index* last = around.items.data() + around.start[vi + 1];
     if (first == last) continue;
     star.reset(first, last);
-    // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
-    // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
-    P2 centroid = P2::Zero(), ideal = P2::Zero();
-    int count = 0;
-    for (const Index* t = first; t != last; ++t) {
-      const Tri3& T = tris[static_cast<size_t>(*t)];
-      int k = 0;
-      while (T[static_cast<size_t>(k)] != v) ++k;
-      const P2 a = uv[static_cast<size_t>(T[static_cast<size_t>((k + 1) % 3)])], b = uv[static_cast<size_t>(T[static_cast<size_t>((k + 2) % 3)])];
-      const P2 e = b - a;
-      ideal += 0.5 * (a + b) + (std::sqrt(3.0) / 2) * P2(-e.y(), e.x());
-      centroid += a + b;
-      count += 2;
-    }
-    centroid /= count;
-    ideal /= static_cast<double>(last - first);
-    const double before = star.worst(), before_mean = star.sum_log();
-    const P2 p0 = uv[vi];
-    const Vec3 x0 = xyz[vi];
-    bool kept = false;
-    for (const P2& target : {ideal, centroid})
-      for (double step : {1.0, 0.5}) {
-        if (kept) break;
-        const P2 p = p0 + step * (target - p0);
-        uv[vi] = p;
-        if (!star.uv_positive()) continue;
-        Vec3 x;
-        if (!map.lift(p, x)) continue;
-        xyz[vi] = x;
-        const double lim = before - 1e-12;
-        const double after = star.worst([lim](double y) { return y < lim; }, true);
-        // Better worst element, or as good a worst element and a better geometric mean.
-        if (after > before + 1e-12 || (after >= lim && after > 0 && star.sum_log() > before_mean + 1e-12)) kept = true;
-      }
-    if (!kept) uv[vi] = p0, xyz[vi] = x0;
-    if (compass_search(uv, xyz, tris, v, star, centroid, ideal, map)) kept = true;
-    if (kept) ++moves;
+    if (move_node(uv, xyz, tris, v, star, map)) ++moves;
   }
   return moves;
+}
+
+// Splits, for each triangle below kSplitBelow, its longest edge inside the domain at the UV midpoint
+// and moves the new node, then the corners of the two split triangles that are inside the domain,
+// then the new node again; kept only when the worst of the triangles this changed beats the worst
+// before.
+// A needle between a fine boundary chain and a coarse one across a strip narrower than h has no
+// interior node at all, and a sliver whose apex sits on a boundary edge cannot leave it while its
+// other triangles hold it there: no move of the existing nodes mends either.
+std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
+  std::vector<Index> bad;
+  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t) {
+    const Tri3& T = tris[static_cast<size_t>(t)];
+    const double q = quality(uv, xyz, T[0], T[1], T[2]);
+    if (q >= 0 && q < kSplitBelow) bad.push_back(t);
+  }
+  if (bad.empty()) return 0;
+  // As at the pass's start; changed triangles are marked and their neighbours found by content.
+  const NodeTriangles around = node_triangles(uv.size(), tris);
+  std::vector<char> touched(tris.size(), 0);
+  const Index first_new = static_cast<Index>(tris.size());
+  std::int64_t splits = 0;
+  for (const Index t : bad) {
+    if (touched[static_cast<size_t>(t)]) continue;
+    const Tri3 T = tris[static_cast<size_t>(t)];
+    Index s = -1, a = -1, b = -1, c = -1, d = -1;
+    double longest = -1;
+    for (int i = 0; i < 3; ++i) {
+      const Index ai = T[static_cast<size_t>(i)], bi = T[static_cast<size_t>((i + 1) % 3)], ci = T[static_cast<size_t>((i + 2) % 3)];
+      const double len = (xyz[static_cast<size_t>(bi)] - xyz[static_cast<size_t>(ci)]).norm();
+      if (len <= longest) continue;
+      for (Index k = around.start[static_cast<size_t>(bi)]; k < around.start[static_cast<size_t>(bi) + 1]; ++k) {
+        const Index u = around.items[static_cast<size_t>(k)];
+        if (u == t || touched[static_cast<size_t>(u)]) continue;
+        const Tri3& U = tris[static_cast<size_t>(u)];
+        for (int m = 0; m < 3; ++m)
+          if (U[static_cast<size_t>((m + 1) % 3)] == ci && U[static_cast<size_t>((m + 2) % 3)] == bi)
+            s = u, a = ai, b = bi, c = ci, d = U[static_cast<size_t>(m)], longest = len;
+      }
+    }
+    if (s < 0) continue;
+    const Tri3 S = tris[static_cast<size_t>(s)];
+    // The split also lets the corners inside the domain move (a sliver's apex a rounding off a
+    // boundary edge), which changes their other triangles.
+    const std::array<Index, 4> corners{a, b, c, d};
+    // A node's triangles: those around it at the pass's start that still hold it, and the new ones.
+    auto star_of = [&](Index w) {
+      std::vector<Index> st;
+      auto holds = [&](Index u) {
+        const Tri3& U = tris[static_cast<size_t>(u)];
+        return U[0] == w || U[1] == w || U[2] == w;
+      };
+      if (static_cast<size_t>(w) + 1 < around.start.size())
+        for (Index k = around.start[static_cast<size_t>(w)]; k < around.start[static_cast<size_t>(w) + 1]; ++k)
+          if (holds(around.items[static_cast<size_t>(k)])) st.push_back(around.items[static_cast<size_t>(k)]);
+      for (Index u = first_new; u < static_cast<Index>(tris.size()); ++u)
+        if (holds(u)) st.push_back(u);
+      return st;
+    };
+    // The worst of the given triangles and of the triangles at the corners inside the domain: the
+    // triangles a split and its moves change (a fan of needles at a boundary corner keeps the
+    // corner's worst until its last needle is split, so the corners' other triangles are not judged).
+    auto worst_of = [&](const std::vector<Index>& ts) {
+      double q = 1;
+      std::vector<Index> all = ts;
+      for (Index w : corners)
+        if (w >= fixed)
+          for (Index u : star_of(w)) all.push_back(u);
+      for (Index u : all) q = std::min(q, quality(uv, xyz, tris[static_cast<size_t>(u)][0], tris[static_cast<size_t>(u)][1], tris[static_cast<size_t>(u)][2]));
+      return q;
+    };
+    const double before = worst_of({t, s});
+    const P2 p = 0.5 * (uv[static_cast<size_t>(b)] + uv[static_cast<size_t>(c)]);
+    Vec3 x;
+    if (!map.lift(p, x)) continue;
+    std::array<P2, 4> uv0;
+    std::array<Vec3, 4> xyz0;
+    for (size_t k = 0; k < 4; ++k) uv0[k] = uv[static_cast<size_t>(corners[k])], xyz0[k] = xyz[static_cast<size_t>(corners[k])];
+    const Index v = static_cast<Index>(uv.size());
+    uv.push_back(p), xyz.push_back(x);
+    const Index t2 = static_cast<Index>(tris.size()), s2 = t2 + 1;
+    tris[static_cast<size_t>(t)] = {a, b, v}, tris[static_cast<size_t>(s)] = {d, c, v};
+    tris.push_back({a, v, c}), tris.push_back({d, v, b});
+    const std::vector<Index> star{t, s, t2, s2};
+    NodeStar moving(uv, xyz, tris);
+    auto move = [&](Index w, const std::vector<Index>& ts) {
+      moving.reset(ts.data(), ts.data() + ts.size());
+      move_node(uv, xyz, tris, w, moving, map);
+    };
+    move(v, star);
+    bool inner = false;
+    for (Index w : corners)
+      if (w >= fixed) move(w, star_of(w)), inner = true;
+    if (inner) move(v, star);
+    if (worst_of(star) > before + 1e-9) {
+      touched[static_cast<size_t>(t)] = touched[static_cast<size_t>(s)] = 1;
+      ++splits;
+    } else {
+      tris[static_cast<size_t>(t)] = T, tris[static_cast<size_t>(s)] = S;
+      tris.resize(static_cast<size_t>(t2));
+      uv.pop_back(), xyz.pop_back();
+      for (size_t k = 0; k < 4; ++k) uv[static_cast<size_t>(corners[k])] = uv0[k], xyz[static_cast<size_t>(corners[k])] = xyz0[k];
+    }
+  }
+  return splits;
 }
 
 }  // namespace
@@ -235,6 +351,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
     if (optimise_nodes(uv, xyz, tris, fixed, map, kOptimiseFloor) == 0) break;
     flips();
   }
+  for (int it = 0; it < kSplitRounds && split_pass(uv, xyz, tris, fixed, map) > 0; ++it) flips();
   return total;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 // Mesh improvement judged in 3D: edge flips and UV node moves are kept only when the worst Lo
 // lambda of the 3D triangles they touch improves (the UV triangles must stay positive); then a few
-// passes of optimise_nodes (node_optimisation.hpp) for the sum of log lambda.
+// passes of optimise_nodes (node_optimisation.hpp) for the sum of log lambda; last, a triangle still
+// below lambda 0.3 gets a node on its longest inner edge where that lifts the worst element near it
+// (a needle across a strip narrower than h has no interior node to move). Boundary nodes never move
+// and are never added: faces sharing an edge keep sharing its nodes.
 #include <array>
 #include <vector>
 
