@@ -88,6 +88,14 @@ Index first_multi_fan_vertex(const std::vector<Tri>& triangles, size_t vertex_co
 
 }  // namespace
 
+double bbox_diagonal(const TriMesh& m) {
+  if (m.vertices.empty()) return 0.0;
+  Vec3 lo = m.vertices[0], hi = m.vertices[0];
+  for (const Vec3& p : m.vertices)
+    if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  return (hi - lo).norm();
+}
+
 MeshStats compute_stats(const TriMesh& m) {
   MeshStats s;
   const size_t nv = m.vertices.size(), nt = m.triangles.size();

@@ -5,12 +5,6 @@
 
 namespace wefm::meshing {
 
-double lo_lambda(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  const double s = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
-  return s > 0 ? 4.0 * std::sqrt(3.0) * area / s : 0.0;
-}
-
 double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 p[4] = {a, b, c, d};
   Vec3 n = Vec3::Zero();

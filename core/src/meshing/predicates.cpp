@@ -72,8 +72,7 @@ double sign_of(const Expansion& x) {
 }
 
 constexpr double kEps = std::numeric_limits<double>::epsilon() * 0.5;
-// Error bound coefficients chosen generously above Shewchuk's (3+16e)e and (10+96e)e.
-constexpr double kOrientBound = 4.0 * kEps;
+// Error bound coefficient chosen generously above Shewchuk's (10+96e)e (orient2d's is in the header).
 constexpr double kIncircleBound = 12.0 * kEps;
 
 double orient_exact(const P2& a, const P2& b, const P2& c) {
@@ -97,12 +96,7 @@ double incircle_exact(const P2& a, const P2& b, const P2& c, const P2& d) {
 
 }  // namespace
 
-double orient2d(const P2& a, const P2& b, const P2& c) {
-  const double l = (a.x() - c.x()) * (b.y() - c.y());
-  const double r = (a.y() - c.y()) * (b.x() - c.x());
-  const double det = l - r;
-  const double bound = kOrientBound * (std::fabs(l) + std::fabs(r));
-  if (std::fabs(det) > bound) return det;
+double orient2d_exact(const P2& a, const P2& b, const P2& c, double det) {
   return orient_exact(a, b, c) * (det == 0 ? 1.0 : std::fabs(det));
 }
 

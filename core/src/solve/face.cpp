@@ -122,8 +122,8 @@ void Face::set_edge_nodes(Index edge, std::vector<Vec3> nodes) {
   const Index ne = static_cast<Index>(tp.edges.size());
   if (edge < 0 || edge >= ne) fail(Errc::out_of_range, "edge " + std::to_string(edge) + " does not exist (" + std::to_string(ne) + " edges)");
   if (nodes.size() < 2) fail(Errc::invalid_argument, "edge nodes must include both end vertices (got " + std::to_string(nodes.size()) + " nodes)");
-  const MeshStats st = compute_stats(mesh_);
-  const double tol = 1e-6 * (st.bbox_max - st.bbox_min).norm();
+  // Only the size of the face: the full statistics would rebuild its topology once per edge.
+  const double tol = 1e-6 * bbox_diagonal(mesh_);
   const auto& ch = tp.edges[static_cast<size_t>(edge)];
   for (size_t j = 0; j < nodes.size(); ++j) {
     const Vec3& p = nodes[j];

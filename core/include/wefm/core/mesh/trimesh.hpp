@@ -25,6 +25,9 @@ struct MeshStats {
 
 MeshStats compute_stats(const TriMesh& mesh);
 
+// The diagonal of the finite vertices' bounding box (compute_stats' bbox), without the topology.
+double bbox_diagonal(const TriMesh& mesh);
+
 // Throws Error(invalid_mesh) naming the first offending vertex/triangle/edge. Accepts zero-area
 // triangles (they are regularised by min_beta) and unreferenced vertices (they get no use).
 // Returns the half-edges it built, so that the topology need not build them again.

@@ -1,5 +1,6 @@
 #pragma once
 // Quality of a 3D mesh (METHOD §9.4, eq. 11 and 12).
+#include <cmath>
 #include <vector>
 
 #include "wefm/core/meshing/domain_mesh.hpp"
@@ -7,7 +8,12 @@
 namespace wefm::meshing {
 
 // Lo's lambda = 4 sqrt(3) area / (l1^2 + l2^2 + l3^2): 1 for an equilateral triangle, 0 when flat.
-double lo_lambda(const Vec3& a, const Vec3& b, const Vec3& c);
+// Inline: smoothing and node optimisation evaluate it in their innermost loops.
+inline double lo_lambda(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  const double s = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
+  return s > 0 ? 4.0 * std::sqrt(3.0) * area / s : 0.0;
+}
 
 // Minimum over the four corners of the corner Jacobian (e1 x e2 . n) / (|e1| |e2|), n the quad's
 // mean normal: 1 for a rectangle, <= 0 for a folded or inverted quad.
