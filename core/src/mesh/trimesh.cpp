@@ -88,31 +88,29 @@ Index first_multi_fan_vertex(const std::vector<Tri>& triangles, size_t vertex_co
 
 }  // namespace
 
-double bbox_diagonal(const TriMesh& m) {
-  if (m.vertices.empty()) return 0.0;
-  Vec3 lo = m.vertices[0], hi = m.vertices[0];
-  for (const Vec3& p : m.vertices)
-    if (p.allFinite()) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  return (hi - lo).norm();
-}
+namespace {
 
-MeshStats compute_stats(const TriMesh& m) {
-  MeshStats s;
-  const size_t nv = m.vertices.size(), nt = m.triangles.size();
-  if (nv) {
-    s.bbox_min = s.bbox_max = m.vertices[0];
-  }
+// The finite vertices' bounding box (zero for no vertices); returns how many are not finite.
+std::int64_t bounding_box(const TriMesh& m, Vec3& lo, Vec3& hi) {
+  lo = hi = m.vertices.empty() ? Vec3::Zero() : m.vertices[0];
+  std::int64_t non_finite = 0;
   for (const Vec3& p : m.vertices) {
     if (!p.allFinite()) {
-      ++s.non_finite;
+      ++non_finite;
       continue;
     }
-    s.bbox_min = s.bbox_min.cwiseMin(p);
-    s.bbox_max = s.bbox_max.cwiseMax(p);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
   }
+  return non_finite;
+}
+
+// The triangles with valid, distinct corners; counts the others and the vertices none uses.
+std::vector<Tri> usable_triangles(const TriMesh& m, MeshStats& s) {
+  const size_t nv = m.vertices.size();
   std::vector<char> used(nv, 0);
   std::vector<Tri> good;
-  good.reserve(nt);
+  good.reserve(m.triangles.size());
   for (const Tri& f : m.triangles) {
     bool ok = true;
     for (Index v : f)
@@ -130,6 +128,11 @@ MeshStats compute_stats(const TriMesh& m) {
     good.push_back(f);
   }
   for (char u : used) s.isolated_vertices += u ? 0 : 1;
+  return good;
+}
+
+// Area, zero-area triangles, mean edge length and triangles repeated on the same three vertices.
+void measure_triangles(const TriMesh& m, const std::vector<Tri>& good, MeshStats& s) {
   double elen = 0;
   for (const Tri& f : good) {
     const Vec3 &a = m.vertices[static_cast<size_t>(f[0])], &b = m.vertices[static_cast<size_t>(f[1])], &c = m.vertices[static_cast<size_t>(f[2])];
@@ -142,17 +145,20 @@ MeshStats compute_stats(const TriMesh& m) {
   }
   if (!good.empty()) s.mean_edge_length = elen / (3.0 * static_cast<double>(good.size()));
   std::vector<Tri> canon;
-  const auto order = triangles_by_vertex_set(good, static_cast<Index>(nv), canon);
+  const auto order = triangles_by_vertex_set(good, static_cast<Index>(m.vertices.size()), canon);
   for (size_t i = 1; i < order.size(); ++i)
     if (canon[static_cast<size_t>(order[i])] == canon[static_cast<size_t>(order[i - 1])]) ++s.duplicate_triangles;
-  // Edge statistics from the half-edges grouped by undirected edge; the twins of an edge-manifold,
-  // consistently oriented mesh fall out of the same pass.
+}
+
+// Edge statistics from the half-edges grouped by undirected edge; the twins of an edge-manifold,
+// consistently oriented mesh fall out of the same pass, and so do the connected components.
+// Returns the number of edges.
+std::int64_t count_edges(const std::vector<Tri>& good, size_t nv, HalfEdges& he, MeshStats& s) {
   const EdgeBuckets eb = half_edges_by_edge(good, static_cast<Index>(nv));
-  HalfEdges he;
   he.vertex_count = static_cast<Index>(nv);
   assign_huge(he.twin, eb.entries.size(), -1);
   UnionFind comp(static_cast<Index>(good.size()));
-  std::int64_t edges = 0, boundary_edges = 0;
+  std::int64_t edges = 0;
   auto from = [&](Index h) { return good[static_cast<size_t>(h / 3)][h % 3]; };
   const EdgeBuckets::Entry* e = eb.entries.data();
   for (size_t a = 0; a < nv; ++a)
@@ -160,7 +166,6 @@ MeshStats compute_stats(const TriMesh& m) {
       Index j = i + 1;
       while (j < end && e[j].hi == e[i].hi) ++j;
       ++edges;
-      if (j - i == 1) ++boundary_edges;
       if (j - i > 2) ++s.non_manifold_edges;
       if (j - i == 2) {
         if (from(e[i].h) == from(e[i + 1].h)) ++s.inconsistent_edges;
@@ -171,30 +176,50 @@ MeshStats compute_stats(const TriMesh& m) {
       i = j;
     }
   for (Index t = 0; t < static_cast<Index>(good.size()); ++t) s.components += comp.find(t) == t ? 1 : 0;
-  // Boundary loops and fans only make sense on an edge-manifold, oriented mesh.
-  if (s.non_manifold_edges == 0 && s.inconsistent_edges == 0 && s.bad_indices == 0) {
-    auto fans = fans_per_vertex(good, nv, he);
-    for (size_t v = 0; v < nv; ++v) s.non_manifold_vertices += fans[v] > 1 ? 1 : 0;
-    std::vector<char> seen(he.twin.size(), 0);
-    // Boundary cycles: follow boundary half-edges; next boundary half-edge out of b found by
-    // rotating around b through twins.
-    for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h) {
-      if (he.twin[static_cast<size_t>(h)] >= 0 || seen[static_cast<size_t>(h)]) continue;
-      ++s.boundary_loops;
-      Index x = h;
-      for (size_t guard = 0; guard <= he.twin.size() && !seen[static_cast<size_t>(x)]; ++guard) {
-        seen[static_cast<size_t>(x)] = 1;
-        Index y = HalfEdges::next(x);
-        while (he.twin[static_cast<size_t>(y)] >= 0) y = HalfEdges::next(he.twin[static_cast<size_t>(y)]);
-        x = y;
-      }
+  return edges;
+}
+
+// Non-manifold vertices, boundary loops and the genus, on an edge-manifold, oriented mesh.
+void count_loops_and_genus(const std::vector<Tri>& good, size_t nv, const HalfEdges& he, std::int64_t edges, MeshStats& s) {
+  auto fans = fans_per_vertex(good, nv, he);
+  for (size_t v = 0; v < nv; ++v) s.non_manifold_vertices += fans[v] > 1 ? 1 : 0;
+  std::vector<char> seen(he.twin.size(), 0);
+  // Boundary cycles: follow boundary half-edges; next boundary half-edge out of b found by
+  // rotating around b through twins.
+  for (Index h = 0; h < static_cast<Index>(he.twin.size()); ++h) {
+    if (he.twin[static_cast<size_t>(h)] >= 0 || seen[static_cast<size_t>(h)]) continue;
+    ++s.boundary_loops;
+    Index x = h;
+    for (size_t guard = 0; guard <= he.twin.size() && !seen[static_cast<size_t>(x)]; ++guard) {
+      seen[static_cast<size_t>(x)] = 1;
+      Index y = HalfEdges::next(x);
+      while (he.twin[static_cast<size_t>(y)] >= 0) y = HalfEdges::next(he.twin[static_cast<size_t>(y)]);
+      x = y;
     }
-    const std::int64_t V = static_cast<std::int64_t>(nv) - s.isolated_vertices;
-    const std::int64_t chi = V - edges + static_cast<std::int64_t>(good.size());
-    s.genus = s.non_manifold_vertices ? -1 : (2 * s.components - chi - s.boundary_loops) / 2;
-  } else {
-    s.genus = -1;
   }
+  const std::int64_t V = static_cast<std::int64_t>(nv) - s.isolated_vertices;
+  const std::int64_t chi = V - edges + static_cast<std::int64_t>(good.size());
+  s.genus = s.non_manifold_vertices ? -1 : (2 * s.components - chi - s.boundary_loops) / 2;
+}
+
+}  // namespace
+
+double bbox_diagonal(const TriMesh& m) {
+  Vec3 lo, hi;
+  bounding_box(m, lo, hi);
+  return (hi - lo).norm();
+}
+
+MeshStats compute_stats(const TriMesh& m) {
+  MeshStats s;
+  s.non_finite = bounding_box(m, s.bbox_min, s.bbox_max);
+  const std::vector<Tri> good = usable_triangles(m, s);
+  measure_triangles(m, good, s);
+  HalfEdges he;
+  const std::int64_t edges = count_edges(good, m.vertices.size(), he, s);
+  // Boundary loops and fans only make sense on an edge-manifold, oriented mesh.
+  if (s.non_manifold_edges == 0 && s.inconsistent_edges == 0 && s.bad_indices == 0) count_loops_and_genus(good, m.vertices.size(), he, edges, s);
+  else s.genus = -1;
   return s;
 }
 

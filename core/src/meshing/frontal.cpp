@@ -46,6 +46,55 @@ double size_ratio(const Vec3& a, const Vec3& b, const Vec3& c, double size) {
   return kSqrt3 * la * lb * lc / (2 * area2) / size;
 }
 
+namespace {
+
+// The new node on the front edge (a, b) of a triangle with apex c: along the edge's bisector in
+// UV at the height front_distance asks for, with the step rescaled where the UV scale changes over
+// it. False when it cannot be placed (a degenerate edge or triangle, a point off the domain).
+// `h_here`: the size at the edge's midpoint.
+bool front_apex(const Triangulation& tr, const std::vector<Vec3>& xyz, const SurfaceMap& map, const SizeField& size, Index a, Index b,
+                Index c, P2& p, Vec3& x, double& h_here) {
+  const Vec3 &xa = xyz[static_cast<size_t>(a)], &xb = xyz[static_cast<size_t>(b)], &xc = xyz[static_cast<size_t>(c)];
+  // The bisector in UV: the direction M-orthogonal to the edge, M = J^T J the first fundamental
+  // form, with unit M-length, so a step d along it is (to first order) d in 3D.
+  const P2 ua = tr.node(a), ub = tr.node(b);
+  const P2 m = 0.5 * (ua + ub);
+  Eigen::Matrix<double, 3, 2> J;
+  if (!map.jacobian(m, J)) return false;
+  const Eigen::Matrix2d M = J.transpose() * J;
+  const P2 edge = ub - ua;
+  P2 n = M.inverse() * P2(-edge.y(), edge.x());
+  const double nn = n.dot(M * n);
+  if (!(nn > 0) || !std::isfinite(nn)) return false;
+  n /= std::sqrt(nn);
+  // The replaced triangle's circumcentre in 3D, as a signed distance along the bisector.
+  const Vec3 u = xb - xa, w = xc - xa, uw = u.cross(w);
+  const double uw2 = uw.squaredNorm();
+  if (!(uw2 > 0)) return false;
+  const Vec3 cc = xa + (w.squaredNorm() * uw.cross(u) + u.squaredNorm() * w.cross(uw)) / (2 * uw2);
+  const Vec3 m3 = 0.5 * (xa + xb);
+  const double q = (cc - m3).dot(uw.cross(u).normalized());
+  h_here = size.at(m3);
+  const double half = 0.5 * u.norm();
+  const double d = front_distance(half, h_here / kSqrt3, q, (cc - xa).norm());
+  p = m + d * n;
+  bool lifted = d > 0 && map.lift(p, x);
+  // The metric is the one at the edge midpoint; where the UV scale changes over the step (a
+  // sphere's domain), rescale the step until the apex stands at the intended 3D height.
+  double step = d;
+  for (int it = 0; it < kCorrections && lifted; ++it) {
+    const double side = 0.5 * ((x - xa).norm() + (x - xb).norm());
+    const double height = std::sqrt(std::max(0.0, side * side - half * half));
+    if (!(height > 0) || std::fabs(height - d) < 0.02 * d) break;
+    step *= std::clamp(d / height, 0.5, 2.0);
+    p = m + step * n;
+    lifted = map.lift(p, x);
+  }
+  return lifted;
+}
+
+}  // namespace
+
 std::int64_t frontal_refine(Triangulation& tr, std::vector<Vec3>& xyz, std::vector<double>& node_size, const SurfaceMap& map,
                             const SizeField& size, const FrontalSettings& set, const std::function<void()>& tick) {
   std::vector<SlotState> state;
@@ -96,59 +145,16 @@ std::int64_t frontal_refine(Triangulation& tr, std::vector<Vec3>& xyz, std::vect
     const int i = front_edge(t);
     if (i < 0) continue;  // queued again when a neighbour is accepted
     const Index a = tr.corner(t, (i + 1) % 3), b = tr.corner(t, (i + 2) % 3), c = tr.corner(t, i);
-    const Vec3 &xa = xyz[static_cast<size_t>(a)], &xb = xyz[static_cast<size_t>(b)], &xc = xyz[static_cast<size_t>(c)];
     // Given up triangles count as accepted, so the front moves past them; what stays too large
     // is left to circumcentre refinement.
     auto give_up = [&] {
       info(t).dead_end = true;
       for (int k = 0; k < 3; ++k) push(tr.neighbour(t, k));
     };
-    // The bisector in UV: the direction M-orthogonal to the edge, M = J^T J the first fundamental
-    // form, with unit M-length, so a step d along it is (to first order) d in 3D.
-    const P2 ua = tr.node(a), ub = tr.node(b);
-    const P2 m = 0.5 * (ua + ub);
-    Eigen::Matrix<double, 3, 2> J;
-    if (!map.jacobian(m, J)) {
-      give_up();
-      continue;
-    }
-    const Eigen::Matrix2d M = J.transpose() * J;
-    const P2 edge = ub - ua;
-    P2 n = M.inverse() * P2(-edge.y(), edge.x());
-    const double nn = n.dot(M * n);
-    if (!(nn > 0) || !std::isfinite(nn)) {
-      give_up();
-      continue;
-    }
-    n /= std::sqrt(nn);
-    // The replaced triangle's circumcentre in 3D, as a signed distance along the bisector.
-    const Vec3 u = xb - xa, w = xc - xa, uw = u.cross(w);
-    const double uw2 = uw.squaredNorm();
-    if (!(uw2 > 0)) {
-      give_up();
-      continue;
-    }
-    const Vec3 cc = xa + (w.squaredNorm() * uw.cross(u) + u.squaredNorm() * w.cross(uw)) / (2 * uw2);
-    const Vec3 m3 = 0.5 * (xa + xb);
-    const double q = (cc - m3).dot(uw.cross(u).normalized());
-    const double h_here = size.at(m3);
-    const double half = 0.5 * u.norm();
-    const double d = front_distance(half, h_here / kSqrt3, q, (cc - xa).norm());
-    P2 p = m + d * n;
+    P2 p;
     Vec3 x;
-    bool lifted = d > 0 && map.lift(p, x);
-    // The metric is the one at the edge midpoint; where the UV scale changes over the step (a
-    // sphere's domain), rescale the step until the apex stands at the intended 3D height.
-    double step = d;
-    for (int it = 0; it < kCorrections && lifted; ++it) {
-      const double side = 0.5 * ((x - xa).norm() + (x - xb).norm());
-      const double height = std::sqrt(std::max(0.0, side * side - half * half));
-      if (!(height > 0) || std::fabs(height - d) < 0.02 * d) break;
-      step *= std::clamp(d / height, 0.5, 2.0);
-      p = m + step * n;
-      lifted = map.lift(p, x);
-    }
-    if (!lifted) {
+    double h_here = 0;
+    if (!front_apex(tr, xyz, map, size, a, b, c, p, x, h_here)) {
       give_up();
       continue;
     }

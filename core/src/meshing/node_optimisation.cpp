@@ -8,6 +8,37 @@
 
 namespace wefm::meshing {
 
+namespace {
+
+// Gradient of sum log lambda over node v's triangles [first, last) w.r.t. its 3D position, and in
+// `mean_edge` the mean length of its edges over the triangles with area (0 for none).
+Vec3 log_lambda_gradient(const std::vector<Vec3>& xyz, const std::vector<std::array<Index, 3>>& tris, const Index* first,
+                         const Index* last, Index v, double& mean_edge) {
+  const Vec3 x = xyz[static_cast<size_t>(v)];
+  Vec3 g = Vec3::Zero();
+  double edge = 0;
+  int edges = 0;
+  for (const Index* k = first; k != last; ++k) {
+    const auto& T = tris[static_cast<size_t>(*k)];
+    int i = 0;
+    while (T[static_cast<size_t>(i)] != v) ++i;
+    const Vec3& a = xyz[static_cast<size_t>(T[static_cast<size_t>((i + 1) % 3)])];
+    const Vec3& b = xyz[static_cast<size_t>(T[static_cast<size_t>((i + 2) % 3)])];
+    const Vec3 N = (a - x).cross(b - x);
+    const double area2 = N.norm();
+    const double S = (a - x).squaredNorm() + (b - x).squaredNorm() + (a - b).squaredNorm();
+    if (!(area2 > 0) || !(S > 0)) continue;
+    // d area / dx = (a - b) x N^ / 2, d S / dx = 2 (2x - a - b).
+    g += (a - b).cross(N / area2) / area2 - 2.0 * (2.0 * x - a - b) / S;
+    edge += (a - x).norm();
+    ++edges;
+  }
+  mean_edge = edges ? edge / edges : 0.0;
+  return g;
+}
+
+}  // namespace
+
 std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<std::array<Index, 3>>& tris, Index fixed,
                             const SurfaceMap& map, double floor) {
   const size_t n = uv.size();
@@ -63,30 +94,12 @@ std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const s
     if (!(nrm.norm() > 0)) continue;
     const Vec3 unit_n = nrm.normalized();
     const Eigen::Matrix<double, 2, 3> back = (J.transpose() * J).inverse() * J.transpose();
-    // Gradient of sum log lambda w.r.t. the node's 3D position, and the star's mean edge length.
     const Vec3 x = xyz[vi];
-    Vec3 g = Vec3::Zero();
     double edge = 0;
-    int edges = 0;
-    for (Index k = start[vi]; k < start[vi + 1]; ++k) {
-      const auto& T = tris[static_cast<size_t>(items[static_cast<size_t>(k)])];
-      int i = 0;
-      while (T[static_cast<size_t>(i)] != v) ++i;
-      const Vec3& a = xyz[static_cast<size_t>(T[static_cast<size_t>((i + 1) % 3)])];
-      const Vec3& b = xyz[static_cast<size_t>(T[static_cast<size_t>((i + 2) % 3)])];
-      const Vec3 N = (a - x).cross(b - x);
-      const double area2 = N.norm();
-      const double S = (a - x).squaredNorm() + (b - x).squaredNorm() + (a - b).squaredNorm();
-      if (!(area2 > 0) || !(S > 0)) continue;
-      // d area / dx = (a - b) x N^ / 2, d S / dx = 2 (2x - a - b).
-      g += (a - b).cross(N / area2) / area2 - 2.0 * (2.0 * x - a - b) / S;
-      edge += (a - x).norm();
-      ++edges;
-    }
+    Vec3 g = log_lambda_gradient(xyz, tris, items.data() + start[vi], items.data() + start[vi + 1], v, edge);
     g -= g.dot(unit_n) * unit_n;
     const double slope = g.norm();
-    if (!(slope > 0) || edges == 0) continue;
-    edge /= edges;
+    if (!(slope > 0) || !(edge > 0)) continue;
     const Vec3 dir = g / slope;
     const P2 p0 = uv[vi];
     const double lowest = std::min(before.worst, floor);
