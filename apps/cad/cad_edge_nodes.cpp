@@ -87,6 +87,28 @@ void grade(const std::vector<double>& s, std::vector<double>& v, double g) {
   for (size_t k = s.size() - 1; k-- > 0;) v[k] = std::min(v[k], v[k + 1] + g * (s[k + 1] - s[k]));
 }
 
+// The size is linear between samples. Where both ends of a piece were lowered (an edge shorter than
+// the sampling step between two short neighbours), the line between them would keep it small all
+// along, thousands of segments where the grading allows it to rise by g per unit length from each
+// end: the peak of that rise, capped by `cap` (the profile before the ends were lowered, on the same
+// samples), becomes a sample.
+void add_peaks(std::vector<double>& s, std::vector<double>& v, const std::vector<double>& cap, double g) {
+  if (!(g > 0) || s.size() < 2) return;
+  std::vector<double> s2{s[0]}, v2{v[0]};
+  for (size_t k = 0; k + 1 < s.size(); ++k) {
+    const double a = s[k], b = s[k + 1], va = v[k], vb = v[k + 1];
+    const double peak = (vb - va + g * (a + b)) / (2 * g);
+    if (peak > a && peak < b) {
+      const double t = (peak - a) / (b - a);
+      const double at = std::min(va + g * (peak - a), cap[k] + t * (cap[k + 1] - cap[k]));
+      if (at > (va + t * (vb - va)) * (1 + 1e-9)) s2.push_back(peak), v2.push_back(at);
+    }
+    s2.push_back(b), v2.push_back(vb);
+  }
+  s = std::move(s2);
+  v = std::move(v2);
+}
+
 // Nodes at the given arc lengths (sorted, first 0, last the full length) along the edge's chain.
 EdgeNodes place(const CadFace& face, const CadEdge& edge, const std::vector<double>& targets) {
   const size_t m = edge.vertices.size();
@@ -368,9 +390,11 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
   std::map<long long, std::vector<double>> out;
   for (auto& [id, p] : profiles) {
     const Chain& c = chains.at(id);
+    const std::vector<double> cap = p.v;
     p.v.front() = std::min(p.v.front(), vertex_size[static_cast<size_t>(c.v0)]);
     p.v.back() = std::min(p.v.back(), vertex_size[static_cast<size_t>(c.v1)]);
     grade(p.s, p.v, g);
+    add_peaks(p.s, p.v, cap, g);
     const SampledSize sz(p.s, p.v);
     const long long n = std::max<long long>(c.closed ? 3 : 1, std::llround(sz.total()));
     std::vector<double>& t = out[id];

@@ -351,6 +351,33 @@ TEST_CASE("graded edge discretisation: long edges shrink towards a vertex where 
   CHECK(long_edges == 8);
 }
 
+TEST_CASE("graded edge discretisation: an edge shorter than the sampling step rises between two short ends") {
+  // The 100 x 100 x 2 plate at h = 400: the long edges are a quarter of h, shorter than the step at
+  // which sizes are sampled, and both their ends meet the 2-long thickness edges. They grow from 2
+  // at each end by g per unit length to a peak in the middle instead of keeping 2 all along (50
+  // segments, and the faces graded from them thousands of triangles).
+  const wefm_cad::CadModel m = load_shape(BRepPrimAPI_MakeBox(100.0, 100.0, 2.0).Shape(), "wefm_plate_coarse.brep");
+  const double h = 400;
+  const auto graded = wefm_cad::discretise_model_edges(m, h, wefm_cad::local_face_sizes(m, h), 0.3);
+  int long_edges = 0;
+  for (const auto& [id, e] : graded) {
+    std::vector<double> l;
+    for (size_t k = 0; k + 5 < e.xyz.size(); k += 3)
+      l.push_back(std::sqrt(std::pow(e.xyz[k + 3] - e.xyz[k], 2) + std::pow(e.xyz[k + 4] - e.xyz[k + 1], 2) + std::pow(e.xyz[k + 5] - e.xyz[k + 2], 2)));
+    double total = 0;
+    for (double x : l) total += x;
+    if (total < 50) continue;
+    ++long_edges;
+    CAPTURE(id);
+    CHECK(l.front() < 3.0);
+    CHECK(l.back() < 3.0);
+    CHECK(l.size() < 25);
+    CHECK(*std::max_element(l.begin(), l.end()) > 5 * l.front());
+    for (size_t k = 1; k < l.size(); ++k) CHECK(std::max(l[k], l[k - 1]) / std::min(l[k], l[k - 1]) <= 1.45);
+  }
+  CHECK(long_edges == 8);
+}
+
 TEST_CASE("edge segments shrink where a face is narrow, not across a gap outside it") {
   // A plate 10 thick whose outline has an arm 2 wide (0 < y < 2, 10 < x < 100) beside a slot 2
   // wide (2 < y < 4) open at x = 100. At h = 10 the arm's outer edge (y = 0 on top) faces the
