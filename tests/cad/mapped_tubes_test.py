@@ -18,25 +18,20 @@ Checked, at 1/40 of the diagonal (h about 0.48, the pin 2.6 h round):
 
 usage: mapped_tubes_test.py WEFM MODEL.brep
 """
-import json
-import os
-import subprocess
 import sys
 import tempfile
 from collections import Counter
 
-from model_mesh_test import read_msh_faces
+from model_mesh_test import mesh_model, read_msh_faces
 
 
 def run(wefm, model, tmp, name, *extra):
-    msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
-    p = subprocess.run([wefm, "mesh-model", model, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q", *extra],
-                       capture_output=True, text=True, timeout=300)
-    assert p.returncode == 0, f"{name}: exit {p.returncode}\n{p.stderr[-2000:]}"
+    """mesh-model, and the written mesh closed: every edge of the MSH used by exactly two triangles."""
+    report, msh, err = mesh_model(wefm, model, tmp, name, *extra)
     faces, _ = read_msh_faces(msh)
     uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for tris in faces.values() for t in tris for i in range(3))
     assert set(uses.values()) == {2}, f"{name}: open or non-manifold edges: {Counter(uses.values())}"
-    return json.load(open(rep)), faces, p.stderr
+    return report, faces, err
 
 
 def main():

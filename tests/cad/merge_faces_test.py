@@ -17,22 +17,16 @@ it was merged into, the shared model edges, why) on both the merge list and the 
 
 usage: merge_faces_test.py WEFM MODEL.brep
 """
-import json
-import os
-import subprocess
 import sys
 import tempfile
 from collections import Counter
 
-from model_mesh_test import read_msh_faces
+from model_mesh_test import mesh_model, read_msh_faces
 
 
 def run(wefm, model, tmp, name, *extra):
-    msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
-    p = subprocess.run([wefm, "mesh-model", model, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q", *extra],
-                       capture_output=True, text=True, timeout=300)
-    assert p.returncode == 0, f"{name}: exit {p.returncode}\n{p.stderr[-2000:]}"
-    return json.load(open(rep)), msh
+    report, msh, _ = mesh_model(wefm, model, tmp, name, *extra)
+    return report, msh
 
 
 def main():

@@ -38,6 +38,16 @@ CONFORMING = {"nodeocc_kuka.stp"}
 SOUND = {"gmsh_1385_Laufrad_1000.stp", "gmsh_problemSphere.brep"}
 
 
+def mesh_model(wefm, model, tmp, name, *extra):
+    """`wefm mesh-model MODEL` at 1/40 of the diagonal into tmp/name.msh with a report; asserts exit 0.
+    Returns the report, the MSH path and stderr."""
+    msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
+    p = subprocess.run([wefm, "mesh-model", model, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q", *extra],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, f"{name}: exit {p.returncode}\n{p.stderr[-2000:]}"
+    return json.load(open(rep)), msh, p.stderr
+
+
 def read_msh_faces(path):
     """Per surface entity (face): its triangles as node tags; and the nodes' points by tag."""
     lines = open(path).read().split("\n")
