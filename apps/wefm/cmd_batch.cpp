@@ -71,91 +71,130 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
-int run_batch(const std::vector<std::string>& argv) {
+struct BatchRequest {
+  FlattenSettings settings;
+  std::string source, ext, shard, summary_path;
+  std::filesystem::path outdir;
+  long long jobs = 1;
+  bool use_topology = false, has_shard = false, has_summary = false, quiet = false, skip_existing = false;
+};
+
+// Parses and checks the arguments. Returns -1 to go on, else the exit code (help printed, bad usage).
+int parse_request(const std::vector<std::string>& argv, BatchRequest& q) {
   const auto specs = batch_specs();
   ParsedArgs args;
   std::string error;
-  FlattenSettings settings;
-  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, settings, error))) {
-    std::fprintf(stderr, "wefm batch: %s (see wefm batch --help)\n", error.c_str());
+  auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "wefm batch: %s\n", message.c_str());
     return kExitUsage;
-  }
+  };
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, q.settings, error)))
+    return usage(error + " (see wefm batch --help)");
   if (args.help) {
     print_help();
     return kExitOk;
   }
-  if (args.positionals.size() != 1 || !args.has("output")) {
-    std::fprintf(stderr, "wefm batch: expected one DIR or LISTFILE and -o OUTDIR (see wefm batch --help)\n");
-    return kExitUsage;
-  }
-  long long jobs = std::max(1u, std::thread::hardware_concurrency());
-  if (args.has("jobs") && (!parse_int(args.value("jobs"), jobs) || jobs < 1 || jobs > 1024)) {
-    std::fprintf(stderr, "wefm batch: -j: expected a thread count >= 1, got '%s'\n", args.value("jobs").c_str());
-    return kExitUsage;
-  }
-  const bool quiet = args.has("quiet");
+  if (args.positionals.size() != 1 || !args.has("output"))
+    return usage("expected one DIR or LISTFILE and -o OUTDIR (see wefm batch --help)");
+  q.jobs = std::max(1u, std::thread::hardware_concurrency());
+  if (args.has("jobs") && (!parse_int(args.value("jobs"), q.jobs) || q.jobs < 1 || q.jobs > 1024))
+    return usage("-j: expected a thread count >= 1, got '" + args.value("jobs") + "'");
+  q.quiet = args.has("quiet");
   MeshFormat format = MeshFormat::obj;
-  if (args.has("format") && !parse_mesh_format(args.value("format"), format, error)) {
-    std::fprintf(stderr, "wefm batch: --format: %s\n", error.c_str());
-    return kExitUsage;
-  }
-  const std::string ext = mesh_format_extension(format);
+  if (args.has("format") && !parse_mesh_format(args.value("format"), format, error)) return usage("--format: " + error);
+  q.ext = mesh_format_extension(format);
+  q.source = args.positionals[0];
+  q.use_topology = args.has("use-topology");
+  q.has_shard = args.has("shard");
+  if (q.has_shard) q.shard = args.value("shard");
+  q.outdir = args.value("output");
+  q.has_summary = args.has("summary-json");
+  if (q.has_summary) q.summary_path = args.value("summary-json");
+  q.skip_existing = args.has("skip-existing");
+  return -1;
+}
+
+// The faces this run flattens and where each one's outputs go (mesh, report).
+struct BatchPlan {
   std::vector<BatchItem> items;
-  if (!find_batch_items(args.positionals[0], args.has("use-topology"), items, error)) {
+  std::vector<std::vector<std::string>> outputs;  // per item: the UV mesh, the report
+};
+
+// Finds the faces, keeps the shard's, checks the paths and makes OUTDIR. Returns -1 to go on, else
+// the exit code.
+int plan_batch(const BatchRequest& q, BatchPlan& plan) {
+  std::string error;
+  if (!find_batch_items(q.source, q.use_topology, plan.items, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }
-  if (args.has("shard")) {
+  if (q.has_shard) {
     Shard shard;
-    if (!parse_shard(args.value("shard"), shard, error)) {
+    if (!parse_shard(q.shard, shard, error)) {
       std::fprintf(stderr, "wefm batch: %s\n", error.c_str());
       return kExitUsage;
     }
-    keep_shard(items, shard);
+    keep_shard(plan.items, shard);
   }
-  const std::filesystem::path outdir = args.value("output");
-  if (outdir.empty()) {
+  if (q.outdir.empty()) {
     std::fprintf(stderr, "wefm batch: -o: empty directory name\n");
     return kExitUsage;
   }
   std::vector<NamedPath> inputs, outputs;
-  std::vector<std::vector<std::string>> item_outputs;  // what --skip-existing looks for
-  for (const BatchItem& item : items) {
+  for (const BatchItem& item : plan.items) {
     inputs.push_back({"input", item.input});
     inputs.push_back({"seams of " + item.name, item.seams});
     inputs.push_back({"topology of " + item.name, item.topology});
-    outputs.push_back({"output of " + item.name, (outdir / (item.name + ext)).string()});
-    outputs.push_back({"report of " + item.name, (outdir / (item.name + ".json")).string()});
-    item_outputs.push_back({outputs[outputs.size() - 2].path, outputs.back().path});
+    outputs.push_back({"output of " + item.name, (q.outdir / (item.name + q.ext)).string()});
+    outputs.push_back({"report of " + item.name, (q.outdir / (item.name + ".json")).string()});
+    plan.outputs.push_back({outputs[outputs.size() - 2].path, outputs.back().path});
   }
-  if (args.has("summary-json")) outputs.push_back({"--summary-json", args.value("summary-json")});
+  if (q.has_summary) outputs.push_back({"--summary-json", q.summary_path});
   if (!check_output_paths(inputs, outputs, error)) {
     std::fprintf(stderr, "wefm batch: %s\n", error.c_str());
     return kExitUsage;
   }
-  if (!make_dirs(outdir.string(), error)) {
+  if (!make_dirs(q.outdir.string(), error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }
+  return -1;
+}
 
-  CancelWatcher watcher;
-  std::vector<FaceOutcome> results(items.size());
-  std::vector<char> started(items.size(), 0);
+// What each face gave.
+struct BatchRuns {
+  std::vector<FaceOutcome> results;
+  std::vector<char> started;
   // Faces done by an earlier run keep their outputs; the summary shows what those reports say.
-  std::vector<char> skipped(items.size(), 0);
-  if (args.has("skip-existing"))
+  std::vector<char> skipped;
+  std::vector<int> codes;  // exit code per face; a face not started has the stop's
+};
+
+const char* status_of(const BatchRuns& runs, size_t i) {
+  return runs.skipped[i] ? "skipped" : status_text(runs.results[i], runs.started[i]);
+}
+
+// Flattens the faces on up to -j threads, one face job each (a skipped face is only counted).
+BatchRuns flatten_all_faces(const BatchRequest& q, const BatchPlan& plan) {
+  const std::vector<BatchItem>& items = plan.items;
+  BatchRuns runs;
+  runs.results.resize(items.size());
+  runs.started.assign(items.size(), 0);
+  runs.skipped.assign(items.size(), 0);
+  if (q.skip_existing)
     for (size_t i = 0; i < items.size(); ++i)
-      skipped[i] = earlier_result(item_outputs[i], item_outputs[i].back(), results[i]);
+      runs.skipped[i] = earlier_result(plan.outputs[i], plan.outputs[i].back(), runs.results[i]);
+  CancelWatcher watcher;
   std::atomic<size_t> next{0};
   std::atomic<size_t> finished{0};
   std::mutex print_mutex;
   auto worker = [&] {
     for (size_t i; !interrupted() && (i = next++) < items.size();) {
       const BatchItem& item = items[i];
-      if (skipped[i]) {
-        started[i] = 1;
+      if (runs.skipped[i]) {
+        runs.started[i] = 1;
         const size_t done = ++finished;
-        if (!quiet) {
+        if (!q.quiet) {
           std::lock_guard<std::mutex> lock(print_mutex);
           std::fprintf(stderr, "[%zu/%zu] %s: skipped (outputs exist)\n", done, items.size(), item.name.c_str());
         }
@@ -163,73 +202,96 @@ int run_batch(const std::vector<std::string>& argv) {
       }
       FaceJob job;
       job.input = item.input;
-      job.output_mesh = (outdir / (item.name + ext)).string();
-      job.settings = settings;
+      job.output_mesh = plan.outputs[i][0];
+      job.settings = q.settings;
       job.settings.seams_path = item.seams;
       job.settings.topology_path = item.topology;
-      job.settings.report_path = (outdir / (item.name + ".json")).string();
+      job.settings.report_path = plan.outputs[i][1];
       job.watcher = &watcher;
-      started[i] = 1;
-      results[i] = run_face_job(job);
+      runs.started[i] = 1;
+      runs.results[i] = run_face_job(job);
       const size_t done = ++finished;
-      if (!quiet) {
+      if (!q.quiet) {
         std::lock_guard<std::mutex> lock(print_mutex);
-        const FaceOutcome& o = results[i];
+        const FaceOutcome& o = runs.results[i];
         std::fprintf(stderr, "[%zu/%zu] %s: %s (%.2f s)%s%s\n", done, items.size(), item.name.c_str(),
                      status_text(o, true), o.time.total, o.error.empty() ? "" : ": ", o.error.c_str());
       }
     }
   };
   std::vector<std::thread> threads;
-  const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), items.size());
+  const size_t n_threads = std::min<size_t>(static_cast<size_t>(q.jobs), items.size());
   for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
   for (auto& t : threads) t.join();
+  for (size_t i = 0; i < items.size(); ++i) runs.codes.push_back(runs.started[i] ? runs.results[i].exit_code : stop_exit_code());
+  return runs;
+}
 
-  // Summary table.
+// The table, the batch line and the failures on stderr. Returns the worst face's exit code.
+int print_results(const BatchRequest& q, const std::vector<BatchItem>& items, const BatchRuns& runs) {
   size_t width = 4;
   for (const auto& it : items) width = std::max(width, it.name.size());
   std::printf("%-*s %9s %9s %6s %8s %8s  %s\n", static_cast<int>(width), "name", "tris", "score", "flips", "overlaps",
               "time", "status");
   int exit_code = kExitOk;
-  size_t ok = 0;
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  size_t ok = 0, partial = 0;  // partial: not converged but written
   for (size_t i = 0; i < items.size(); ++i) {
-    const FaceOutcome& o = results[i];
+    const FaceOutcome& o = runs.results[i];
     const bool has = o.snap.has_result;
     const wefm_report& r = o.snap.report;
     std::printf("%-*s %9lld %9s %6s %8s %7.2fs  %s\n", static_cast<int>(width), items[i].name.c_str(),
                 static_cast<long long>(o.snap.info.triangles), has ? fmt("%.4f", r.score).c_str() : "-",
                 has ? std::to_string(r.flipped_triangles).c_str() : "-",
-                has ? std::to_string(r.boundary_intersections).c_str() : "-", o.time.total,
-                skipped[i] ? "skipped" : status_text(o, started[i]));
-    const int code = started[i] ? o.exit_code : stop_exit_code();
-    if (code == kExitOk) ++ok;
-    exit_code = std::max(exit_code, code);
-    nlohmann::ordered_json row;
+                has ? std::to_string(r.boundary_intersections).c_str() : "-", o.time.total, status_of(runs, i));
+    if (runs.codes[i] == kExitOk) ++ok;
+    exit_code = std::max(exit_code, runs.codes[i]);
+    partial += runs.started[i] && o.exit_code == kExitSolver && has;
+  }
+  const size_t n_skipped = static_cast<size_t>(std::count(runs.skipped.begin(), runs.skipped.end(), 1));
+  std::printf("%zu faces: %zu ok, %zu not converged (written), %zu failed", items.size(), ok, partial,
+              items.size() - ok - partial);
+  if (q.skip_existing) std::printf(" (%zu skipped: outputs exist)", n_skipped);
+  std::printf("; outputs in %s\n", q.outdir.string().c_str());
+  for (size_t i = 0; i < items.size(); ++i)
+    if (runs.results[i].exit_code != kExitOk && !runs.skipped[i])
+      std::fprintf(stderr, "wefm: %s: %s\n", items[i].name.c_str(), runs.results[i].error.c_str());
+  return exit_code;
+}
+
+// The table as JSON, one row per face (--summary-json).
+nlohmann::ordered_json summary_json(const std::vector<BatchItem>& items, const BatchRuns& runs) {
+  using Json = nlohmann::ordered_json;
+  Json rows = Json::array();
+  for (size_t i = 0; i < items.size(); ++i) {
+    const FaceOutcome& o = runs.results[i];
+    const bool has = o.snap.has_result;
+    const wefm_report& r = o.snap.report;
+    Json row;
     row["name"] = items[i].name;
     row["input"] = items[i].input;
     row["triangles"] = o.snap.info.triangles;
-    row["score"] = has && std::isfinite(r.score) ? nlohmann::ordered_json(r.score) : nlohmann::ordered_json(nullptr);
-    row["flipped_triangles"] = has ? nlohmann::ordered_json(r.flipped_triangles) : nlohmann::ordered_json(nullptr);
-    row["boundary_intersections"] = has ? nlohmann::ordered_json(r.boundary_intersections) : nlohmann::ordered_json(nullptr);
+    row["score"] = has && std::isfinite(r.score) ? Json(r.score) : Json(nullptr);
+    row["flipped_triangles"] = has ? Json(r.flipped_triangles) : Json(nullptr);
+    row["boundary_intersections"] = has ? Json(r.boundary_intersections) : Json(nullptr);
     row["time"] = o.time.total;
-    row["status"] = skipped[i] ? "skipped" : status_text(o, started[i]);
-    row["exit_code"] = code;
+    row["status"] = status_of(runs, i);
+    row["exit_code"] = runs.codes[i];
     row["message"] = o.error;
     rows.push_back(std::move(row));
   }
-  size_t partial = 0;  // not converged but written
-  for (size_t i = 0; i < items.size(); ++i) partial += started[i] && results[i].exit_code == kExitSolver && results[i].snap.has_result;
-  const size_t n_skipped = static_cast<size_t>(std::count(skipped.begin(), skipped.end(), 1));
-  std::printf("%zu faces: %zu ok, %zu not converged (written), %zu failed", items.size(), ok, partial,
-              items.size() - ok - partial);
-  if (args.has("skip-existing")) std::printf(" (%zu skipped: outputs exist)", n_skipped);
-  std::printf("; outputs in %s\n", outdir.string().c_str());
-  for (size_t i = 0; i < items.size(); ++i)
-    if (results[i].exit_code != kExitOk && !skipped[i])
-      std::fprintf(stderr, "wefm: %s: %s\n", items[i].name.c_str(), results[i].error.c_str());
-  if (args.has("summary-json")) {
-    if (const int code = write_file_atomically(args.value("summary-json"), rows.dump(2) + '\n', error)) {
+  return rows;
+}
+
+int run_batch(const std::vector<std::string>& argv) {
+  BatchRequest q;
+  if (const int code = parse_request(argv, q); code >= 0) return code;
+  BatchPlan plan;
+  if (const int code = plan_batch(q, plan); code >= 0) return code;
+  const BatchRuns runs = flatten_all_faces(q, plan);
+  int exit_code = print_results(q, plan.items, runs);
+  if (q.has_summary) {
+    std::string error;
+    if (const int code = write_file_atomically(q.summary_path, summary_json(plan.items, runs).dump(2) + '\n', error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       exit_code = std::max<int>(exit_code, code);
     }

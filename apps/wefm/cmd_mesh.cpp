@@ -338,107 +338,123 @@ bool parse_mesh_options(const ParsedArgs& args, wefm_mesh_options& o, std::strin
   return true;
 }
 
-int run_mesh(const std::vector<std::string>& argv) {
+struct MeshRequest {
+  FlattenSettings settings;
+  wefm_mesh_options mesh{};
+  std::string input, out, domain, report_path, svg;  // report_path, svg empty: not asked for
+  bool quiet = false;
+};
+
+// Parses and checks the arguments. Returns -1 to go on, else the exit code (help printed, bad usage).
+int parse_request(const std::vector<std::string>& argv, MeshRequest& q) {
   const auto specs = mesh_specs();
   ParsedArgs args;
   std::string error;
-  FlattenSettings s;
-  wefm_mesh_options mo{};
-  if (!parse_args(argv, specs, args, error) ||
-      (!args.help && (!apply_solver_options(args, s, error) || !parse_mesh_options(args, mo, error)))) {
-    std::fprintf(stderr, "wefm mesh: %s (see wefm mesh --help)\n", error.c_str());
+  auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "wefm mesh: %s\n", message.c_str());
     return kExitUsage;
-  }
+  };
+  FlattenSettings& s = q.settings;
+  if (!parse_args(argv, specs, args, error) ||
+      (!args.help && (!apply_solver_options(args, s, error) || !parse_mesh_options(args, q.mesh, error))))
+    return usage(error + " (see wefm mesh --help)");
   if (args.help) {
     print_help();
     return kExitOk;
   }
   use_all_threads_unless_given(args, s.options);
-  if (args.positionals.size() != 1 || !args.has("output") || !args.has("size")) {
-    std::fprintf(stderr, "wefm mesh: %s (usage: wefm mesh INPUT --size H -o MESH.obj)\n",
-                 args.positionals.size() != 1 ? "expected one INPUT" : !args.has("output") ? "missing -o MESH.obj" : "missing --size H");
-    return kExitUsage;
-  }
-  if (args.has("seams") && args.has("topology")) {
-    std::fprintf(stderr, "wefm mesh: --seams and --topology exclude each other: put seam edges in the topology\n");
-    return kExitUsage;
-  }
+  if (args.positionals.size() != 1 || !args.has("output") || !args.has("size"))
+    return usage(std::string(args.positionals.size() != 1 ? "expected one INPUT" : !args.has("output") ? "missing -o MESH.obj" : "missing --size H") +
+                 " (usage: wefm mesh INPUT --size H -o MESH.obj)");
+  if (args.has("seams") && args.has("topology"))
+    return usage("--seams and --topology exclude each other: put seam edges in the topology");
   auto opt = [&](const char* name) { return args.has(name) ? args.value(name) : std::string(); };
   s.seams_path = opt("seams");
   s.topology_path = opt("topology");
-  const std::string input = args.positionals[0], out = args.value("output");
-  const std::string domain = args.has("domain-obj") ? args.value("domain-obj") : default_domain_path(out);
-  const std::string report_path = opt("report"), svg = opt("svg");
+  q.input = args.positionals[0];
+  q.out = args.value("output");
+  q.domain = args.has("domain-obj") ? args.value("domain-obj") : default_domain_path(q.out);
+  q.report_path = opt("report");
+  q.svg = opt("svg");
+  q.quiet = args.has("quiet");
   MeshFormat format = MeshFormat::obj;
-  for (const auto& [name, path] : {std::pair<const char*, const std::string*>{"-o", &out}, {"--domain-obj", &domain}})
-    if (!mesh_format_of(*path, format, error)) {
-      std::fprintf(stderr, "wefm mesh: %s: %s\n", name, error.c_str());
-      return kExitUsage;
-    }
-  std::vector<NamedPath> outputs = {{"-o", out}, {args.has("domain-obj") ? "--domain-obj" : "the domain mesh (-o's .domain.obj)", domain}};
+  for (const auto& [name, path] : {std::pair<const char*, const std::string*>{"-o", &q.out}, {"--domain-obj", &q.domain}})
+    if (!mesh_format_of(*path, format, error)) return usage(std::string(name) + ": " + error);
+  std::vector<NamedPath> outputs = {{"-o", q.out}, {args.has("domain-obj") ? "--domain-obj" : "the domain mesh (-o's .domain.obj)", q.domain}};
   for (const char* name : {"report", "svg"})
     if (args.has(name)) outputs.push_back({std::string("--") + name, args.value(name)});
-  if (!check_output_paths({{"input", input}, {"--seams", s.seams_path}, {"--topology", s.topology_path}}, outputs, error)) {
-    std::fprintf(stderr, "wefm mesh: %s\n", error.c_str());
-    return kExitUsage;
-  }
-  for (const std::string* p : {&out, &domain, &report_path, &svg})
+  if (!check_output_paths({{"input", q.input}, {"--seams", s.seams_path}, {"--topology", s.topology_path}}, outputs, error))
+    return usage(error);
+  return -1;
+}
+
+// The 3D mesh, the domain mesh and the picture (--svg). Returns the exit code.
+int write_meshes(const MeshRequest& q, const MeshArrays& m, std::string& error) {
+  int code = write_3d_mesh(q.out, m, error);
+  if (code == kExitOk) code = write_domain_mesh(q.domain, m, error);
+  if (code == kExitOk && !q.svg.empty()) code = write_mesh_svg(q.svg, m, error);
+  return code;
+}
+
+nlohmann::json report_json(const MeshRequest& q, const MeshRun& run, double t_mesh) {
+  const wefm_mesh_report& r = run.report;
+  nlohmann::json j;
+  j["input"] = q.input;
+  j["type"] = q.mesh.type == WEFM_MESH_TRANSFINITE ? "transfinite" : "free";
+  j["size"] = q.mesh.size;
+  j["flatten"] = {{"s", q.settings.options.s}, {"boundary_weight", q.settings.options.boundary_weight},
+                  {"score", run.flatten_report.score}, {"converged", run.flatten_report.converged != 0}, {"time", run.time_solve}};
+  j["mesh"] = {{"nodes", r.nodes}, {"elements", r.elements}, {"nodes_per_element", r.nodes_per_element},
+               {"lambda_mesh", r.lambda_mesh}, {"lambda_min", r.lambda_min}, {"fraction_below_0_6", r.fraction_below_0_6},
+               {"scaled_jacobian_min", r.scaled_jacobian_min}, {"scaled_jacobian_mean", r.scaled_jacobian_mean},
+               {"wiggle_max", r.wiggle_max}, {"wiggle_mean", r.wiggle_mean},
+               {"time", {{"boundary", r.time_boundary}, {"mesh", r.time_mesh}, {"smooth", r.time_smooth}, {"map", r.time_map}, {"total", t_mesh}}}};
+  j["outputs"] = {{"mesh", q.out}, {"domain_mesh", q.domain}};
+  if (!q.svg.empty()) j["outputs"]["svg"] = q.svg;
+  if (!run.warning.empty()) j["warning"] = run.warning;
+  return j;
+}
+
+void print_summary(const MeshRequest& q, const wefm_mesh_report& r) {
+  std::printf("%s: %lld %s, %lld nodes; lambda_mesh %.4f, min %.4f, below 0.6 %.2f%%", q.input.c_str(), static_cast<long long>(r.elements),
+              r.nodes_per_element == 4 ? "quads" : "triangles", static_cast<long long>(r.nodes), r.lambda_mesh, r.lambda_min,
+              100 * r.fraction_below_0_6);
+  if (r.nodes_per_element == 4) std::printf("; scaled Jacobian min %.4f", r.scaled_jacobian_min);
+  if (q.mesh.type == WEFM_MESH_TRANSFINITE) std::printf("; wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
+  std::printf("\n");
+}
+
+int run_mesh(const std::vector<std::string>& argv) {
+  MeshRequest q;
+  if (const int code = parse_request(argv, q); code >= 0) return code;
+  std::string error;
+  for (const std::string* p : {&q.out, &q.domain, &q.report_path, &q.svg})
     if (!p->empty() && !make_parent_dirs(*p, error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       return kExitIo;
     }
-  MeshRun run(s, !args.has("quiet"));
+  MeshRun run(q.settings, !q.quiet);
   const auto t0 = Clock::now();
-  if (!run.flatten(input) || !run.mesh(mo)) {
+  if (!run.flatten(q.input) || !run.mesh(q.mesh)) {
     std::fprintf(stderr, "wefm: %s\n", run.error.c_str());
     return run.code;
   }
   const double t_mesh = since(t0) - run.time_solve;
   if (interrupted()) {
-    std::fprintf(stderr, "wefm: %s: %s\n", input.c_str(), stop_reason().c_str());
+    std::fprintf(stderr, "wefm: %s: %s\n", q.input.c_str(), stop_reason().c_str());
     return stop_exit_code();
   }
-  int written = write_3d_mesh(out, run.arrays, error);
-  if (written == kExitOk) written = write_domain_mesh(domain, run.arrays, error);
-  if (written != kExitOk) {
+  if (const int code = write_meshes(q, run.arrays, error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return written;
+    return code;
   }
-  if (!svg.empty()) {
-    if (const int code = write_mesh_svg(svg, run.arrays, error)) {
+  if (!q.report_path.empty()) {
+    if (const int code = write_file_atomically(q.report_path, report_json(q, run, t_mesh).dump(2) + '\n', error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       return code;
     }
   }
-  const wefm_mesh_report& r = run.report;
-  if (!report_path.empty()) {
-    nlohmann::json j;
-    j["input"] = input;
-    j["type"] = mo.type == WEFM_MESH_TRANSFINITE ? "transfinite" : "free";
-    j["size"] = mo.size;
-    j["flatten"] = {{"s", s.options.s}, {"boundary_weight", s.options.boundary_weight}, {"score", run.flatten_report.score},
-                    {"converged", run.flatten_report.converged != 0}, {"time", run.time_solve}};
-    j["mesh"] = {{"nodes", r.nodes}, {"elements", r.elements}, {"nodes_per_element", r.nodes_per_element},
-                 {"lambda_mesh", r.lambda_mesh}, {"lambda_min", r.lambda_min}, {"fraction_below_0_6", r.fraction_below_0_6},
-                 {"scaled_jacobian_min", r.scaled_jacobian_min}, {"scaled_jacobian_mean", r.scaled_jacobian_mean},
-                 {"wiggle_max", r.wiggle_max}, {"wiggle_mean", r.wiggle_mean},
-                 {"time", {{"boundary", r.time_boundary}, {"mesh", r.time_mesh}, {"smooth", r.time_smooth}, {"map", r.time_map}, {"total", t_mesh}}}};
-    j["outputs"] = {{"mesh", out}, {"domain_mesh", domain}};
-    if (!svg.empty()) j["outputs"]["svg"] = svg;
-    if (!run.warning.empty()) j["warning"] = run.warning;
-    if (const int code = write_file_atomically(report_path, j.dump(2) + '\n', error)) {
-      std::fprintf(stderr, "wefm: %s\n", error.c_str());
-      return code;
-    }
-  }
-  if (!args.has("quiet")) {
-    std::printf("%s: %lld %s, %lld nodes; lambda_mesh %.4f, min %.4f, below 0.6 %.2f%%", input.c_str(), static_cast<long long>(r.elements),
-                r.nodes_per_element == 4 ? "quads" : "triangles", static_cast<long long>(r.nodes), r.lambda_mesh, r.lambda_min,
-                100 * r.fraction_below_0_6);
-    if (r.nodes_per_element == 4) std::printf("; scaled Jacobian min %.4f", r.scaled_jacobian_min);
-    if (mo.type == WEFM_MESH_TRANSFINITE) std::printf("; wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
-    std::printf("\n");
-  }
+  if (!q.quiet) print_summary(q, run.report);
   if (!run.warning.empty()) {
     std::fprintf(stderr, "wefm: warning: %s\n", run.warning.c_str());
     return kExitSolver;

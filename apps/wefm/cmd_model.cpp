@@ -197,77 +197,72 @@ void print_row(const char* name, const TypeRow& r) {
               r.flipped_faces, static_cast<long long>(r.flips), r.intersecting_faces, score, r.time);
 }
 
-int run_model(const std::vector<std::string>& argv) {
+struct ModelRequest {
+  FlattenSettings settings;
+  std::string model_path, atlas_path;  // atlas_path empty: no atlas
+  std::filesystem::path outdir;
+  long long jobs = 1;
+  wefm_cad::TessellationSettings tess;
+  std::set<long long> only;  // face numbers; empty: every face
+  MeshFormat format = MeshFormat::obj;
+  bool quiet = false;
+};
+
+// Parses and checks the arguments. Returns -1 to go on, else the exit code (help printed, bad usage).
+int parse_request(const std::vector<std::string>& argv, ModelRequest& q) {
   const auto specs = model_specs();
   ParsedArgs args;
   std::string error;
-  FlattenSettings settings;
-  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, settings, error))) {
-    std::fprintf(stderr, "wefm model: %s (see wefm model --help)\n", error.c_str());
+  auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "wefm model: %s\n", message.c_str());
     return kExitUsage;
-  }
+  };
+  if (!parse_args(argv, specs, args, error) || (!args.help && !apply_solver_options(args, q.settings, error)))
+    return usage(error + " (see wefm model --help)");
   if (args.help) {
     print_help();
     return kExitOk;
   }
-  if (args.positionals.size() != 1 || !args.has("output")) {
-    std::fprintf(stderr, "wefm model: expected one MODEL file and -o OUTDIR (see wefm model --help)\n");
-    return kExitUsage;
-  }
-  long long jobs = std::max(1u, std::thread::hardware_concurrency());
-  if (args.has("jobs") && (!parse_int(args.value("jobs"), jobs) || jobs < 1 || jobs > 1024)) {
-    std::fprintf(stderr, "wefm model: -j: expected a thread count >= 1, got '%s'\n", args.value("jobs").c_str());
-    return kExitUsage;
-  }
-  wefm_cad::TessellationSettings tess;
-  for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &tess.relative_deflection},
-                             std::pair<const char*, double*>{"angular-deflection", &tess.angular_deflection}}) {
-    if (args.has(name) && (!parse_double(args.value(name), *field) || !(*field > 0))) {
-      std::fprintf(stderr, "wefm model: --%s: expected a number > 0, got '%s'\n", name, args.value(name).c_str());
-      return kExitUsage;
-    }
-  }
-  tess.keep_triangulation = args.has("keep-triangulation");
-  std::set<long long> only;
+  if (args.positionals.size() != 1 || !args.has("output"))
+    return usage("expected one MODEL file and -o OUTDIR (see wefm model --help)");
+  q.jobs = std::max(1u, std::thread::hardware_concurrency());
+  if (args.has("jobs") && (!parse_int(args.value("jobs"), q.jobs) || q.jobs < 1 || q.jobs > 1024))
+    return usage("-j: expected a thread count >= 1, got '" + args.value("jobs") + "'");
+  for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &q.tess.relative_deflection},
+                             std::pair<const char*, double*>{"angular-deflection", &q.tess.angular_deflection}})
+    if (args.has(name) && (!parse_double(args.value(name), *field) || !(*field > 0)))
+      return usage(std::string("--") + name + ": expected a number > 0, got '" + args.value(name) + "'");
+  q.tess.keep_triangulation = args.has("keep-triangulation");
   if (args.has("face"))
     for (const std::string& v : args.values.at("face")) {
       long long k = 0;
-      if (!parse_int(v, k) || k < 1) {
-        std::fprintf(stderr, "wefm model: --face: expected a face number >= 1, got '%s'\n", v.c_str());
-        return kExitUsage;
-      }
-      only.insert(k);
+      if (!parse_int(v, k) || k < 1) return usage("--face: expected a face number >= 1, got '" + v + "'");
+      q.only.insert(k);
     }
-  const bool quiet = args.has("quiet");
-  MeshFormat format = MeshFormat::obj;
-  if (args.has("format") && !parse_mesh_format(args.value("format"), format, error)) {
-    std::fprintf(stderr, "wefm model: --format: %s\n", error.c_str());
-    return kExitUsage;
-  }
-  const std::string model_path = args.positionals[0];
-  const std::filesystem::path outdir = args.value("output");
+  q.quiet = args.has("quiet");
+  if (args.has("format") && !parse_mesh_format(args.value("format"), q.format, error)) return usage("--format: " + error);
+  q.model_path = args.positionals[0];
+  q.outdir = args.value("output");
+  if (args.has("atlas")) q.atlas_path = args.value("atlas");
   // The per-face files (.obj, .json) cannot be the model (.step, .iges, .brep); index.json and the
   // atlas are checked here, before the import.
   std::vector<NamedPath> outputs = {{"-o", args.value("output")}};
-  if (!outdir.empty()) outputs = {{"the index", (outdir / "index.json").string()}};
-  if (args.has("atlas")) outputs.push_back({"--atlas", args.value("atlas")});
-  if (!check_output_paths({{"MODEL", model_path}}, outputs, error)) {
-    std::fprintf(stderr, "wefm model: %s\n", error.c_str());
-    return kExitUsage;
-  }
+  if (!q.outdir.empty()) outputs = {{"the index", (q.outdir / "index.json").string()}};
+  if (args.has("atlas")) outputs.push_back({"--atlas", q.atlas_path});
+  if (!check_output_paths({{"MODEL", q.model_path}}, outputs, error)) return usage(error);
+  return -1;
+}
 
-  wefm_cad::CadModel model;
-  if (const int code = load_cad_model_via_plugin(model_path, tess, model, error)) {
-    std::fprintf(stderr, "wefm: %s\n", error.c_str());
-    return code;
-  }
-  if (!make_dirs((outdir / "input").string(), error)) {
+// Writes every face's input files (the ones --face selects) into OUTDIR/input and lists the runs; a
+// face that failed to import gets its reason instead. Returns -1 to go on, else the exit code.
+int write_face_inputs(const ModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceRun>& runs) {
+  std::string error;
+  if (!make_dirs((q.outdir / "input").string(), error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     return kExitIo;
   }
-  std::vector<FaceRun> runs;
   for (const auto& f : model.faces) {
-    if (!only.empty() && !only.count(f.index)) continue;
+    if (!q.only.empty() && !q.only.count(f.index)) continue;
     FaceRun r;
     r.face = &f;
     r.name = face_name(f.index);
@@ -275,24 +270,25 @@ int run_model(const std::vector<std::string>& argv) {
       r.exit_code = kExitInvalid;
       r.reason = "import: " + f.error;
     } else {
-      r.input_obj = (outdir / "input" / (r.name + ".obj")).string();
-      r.input_topo = (outdir / "input" / (r.name + ".topo.json")).string();
-      int code = write_face_input(r.input_obj, f, model_path, error);
-      if (code == kExitOk) code = write_file_atomically(r.input_topo, wefm_cad::face_topology_text(f, model_path), error);
+      r.input_obj = (q.outdir / "input" / (r.name + ".obj")).string();
+      r.input_topo = (q.outdir / "input" / (r.name + ".topo.json")).string();
+      int code = write_face_input(r.input_obj, f, q.model_path, error);
+      if (code == kExitOk) code = write_file_atomically(r.input_topo, wefm_cad::face_topology_text(f, q.model_path), error);
       if (code != kExitOk) {
         std::fprintf(stderr, "wefm: %s\n", error.c_str());
         return code;
       }
-      r.domain_obj = (outdir / (r.name + mesh_format_extension(format))).string();
-      r.report = (outdir / (r.name + ".json")).string();
+      r.domain_obj = (q.outdir / (r.name + mesh_format_extension(q.format))).string();
+      r.report = (q.outdir / (r.name + ".json")).string();
     }
     runs.push_back(std::move(r));
   }
-  if (!quiet)
-    std::fprintf(stderr, "%s: %zu faces, %lld edges; read %.2f s, BRepMesh %.2f s (deflection %g), import %.2f s\n",
-                 model_path.c_str(), model.faces.size(), static_cast<long long>(model.edge_count), model.time_read,
-                 model.time_mesh, model.linear_deflection, model.time_extract);
+  return -1;
+}
 
+// Flattens the imported faces on `n_threads` threads, one face job each; a face not started because
+// of a stop request gets the stop's exit code. Returns the wall time, seconds.
+double flatten_all_faces(const ModelRequest& q, std::vector<FaceRun>& runs, size_t n_threads) {
   CancelWatcher watcher;
   std::atomic<size_t> next{0}, finished{0};
   std::mutex print_mutex;
@@ -305,7 +301,7 @@ int run_model(const std::vector<std::string>& argv) {
       job.input = r.input_obj;
       job.output_mesh = r.domain_obj;
       job.face_tag = r.face->index;
-      job.settings = settings;
+      job.settings = q.settings;
       job.settings.topology_path = r.input_topo;
       job.settings.report_path = r.report;
       job.watcher = &watcher;
@@ -314,7 +310,7 @@ int run_model(const std::vector<std::string>& argv) {
       r.exit_code = r.outcome.exit_code;
       r.reason = r.outcome.error;
       const size_t done = ++finished;
-      if (!quiet) {
+      if (!q.quiet) {
         std::lock_guard<std::mutex> lock(print_mutex);
         std::fprintf(stderr, "[%zu/%zu] %s %s: %s (%.2f s)\n", done, runs.size(), r.name.c_str(),
                      r.face->surface_type.c_str(), status_of(r), r.outcome.time.total);
@@ -322,85 +318,127 @@ int run_model(const std::vector<std::string>& argv) {
     }
   };
   std::vector<std::thread> threads;
-  const size_t n_threads = std::min<size_t>(static_cast<size_t>(jobs), std::max<size_t>(1, runs.size()));
   for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
   for (auto& t : threads) t.join();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (FaceRun& r : runs)
     if (!r.started && r.input_obj.size() && interrupted()) r.exit_code = stop_exit_code();
+  return wall;
+}
 
-  // Summary by surface type.
+// The faces counted by surface type and over all.
+struct ModelSummary {
   std::map<std::string, TypeRow> by_type;
   TypeRow total;
+};
+
+ModelSummary summarise(const std::vector<FaceRun>& runs) {
+  ModelSummary sum;
   for (const FaceRun& r : runs) {
-    add_to_row(by_type[r.face->surface_type], r);
-    add_to_row(total, r);
+    add_to_row(sum.by_type[r.face->surface_type], r);
+    add_to_row(sum.total, r);
   }
+  return sum;
+}
+
+// The table by surface type, the model line and the failures on stderr. Returns the worst face's exit code.
+int print_results(const ModelRequest& q, const std::vector<FaceRun>& runs, const ModelSummary& sum, double wall,
+                  size_t n_threads) {
   std::printf("%-12s %6s %5s %8s %7s %11s %8s %10s %9s %9s\n", "surface", "faces", "ok", "not_conv", "failed",
               "flip_faces", "flips", "bnd_int", "mean_scr", "time");
-  for (const auto& [type, row] : by_type) print_row(type.c_str(), row);
-  print_row("all", total);
+  for (const auto& [type, row] : sum.by_type) print_row(type.c_str(), row);
+  print_row("all", sum.total);
   std::printf("%s: %d faces, %d ok, %d not converged (written), %d failed; flatten wall time %.2f s with -j %zu; outputs in %s\n",
-              model_path.c_str(), total.faces, total.ok, total.not_converged, total.failed, wall, n_threads,
-              outdir.string().c_str());
+              q.model_path.c_str(), sum.total.faces, sum.total.ok, sum.total.not_converged, sum.total.failed, wall, n_threads,
+              q.outdir.string().c_str());
   int exit_code = kExitOk;
   for (const FaceRun& r : runs) {
     exit_code = std::max(exit_code, r.exit_code);
     if (r.exit_code != kExitOk)
-      std::fprintf(stderr, "wefm: %s face %d (%s, %zu triangles): %s\n", model_path.c_str(), r.face->index,
+      std::fprintf(stderr, "wefm: %s face %d (%s, %zu triangles): %s\n", q.model_path.c_str(), r.face->index,
                    r.face->surface_type.c_str(), r.face->triangles.size() / 3, r.reason.c_str());
   }
+  return exit_code;
+}
 
-  // Index.
+Json index_json(const ModelRequest& q, const wefm_cad::CadModel& model, const std::vector<FaceRun>& runs,
+                const ModelSummary& sum, double wall, size_t n_threads) {
   Json index;
   index["wefm_version"] = wefm_version();
-  index["model"] = model_path;
+  index["model"] = q.model_path;
   index["format"] = model.format;
   index["faces_in_model"] = model.faces.size();
   index["edges_in_model"] = model.edge_count;
   index["bbox_diagonal"] = model.bbox_diagonal;
-  index["tessellation"] = {{"relative_deflection", tess.relative_deflection},
+  index["tessellation"] = {{"relative_deflection", q.tess.relative_deflection},
                            {"linear_deflection", model.linear_deflection},
-                           {"angular_deflection", tess.angular_deflection},
-                           {"keep_triangulation", tess.keep_triangulation}};
+                           {"angular_deflection", q.tess.angular_deflection},
+                           {"keep_triangulation", q.tess.keep_triangulation}};
   index["timings"] = {{"read", model.time_read}, {"mesh", model.time_mesh}, {"import", model.time_extract},
                       {"flatten_wall", wall}, {"jobs", n_threads}};
   Json summary = Json::object();
-  for (const auto& [type, row] : by_type)
+  for (const auto& [type, row] : sum.by_type)
     summary[type] = {{"faces", row.faces}, {"ok", row.ok}, {"not_converged", row.not_converged}, {"failed", row.failed},
                      {"flipped_faces", row.flipped_faces}, {"flipped_triangles", row.flips},
                      {"intersecting_faces", row.intersecting_faces}, {"boundary_intersections", row.intersections},
                      {"mean_score", row.scored ? Json(row.score_sum / row.scored) : Json(nullptr)}};
   index["summary"] = summary;
   Json faces = Json::array();
-  for (const FaceRun& r : runs) faces.push_back(face_entry(r, outdir));
+  for (const FaceRun& r : runs) faces.push_back(face_entry(r, q.outdir));
   index["faces"] = faces;
-  const std::string index_path = (outdir / "index.json").string();
-  if (const int code = write_file_atomically(index_path, index.dump(1) + '\n', error)) {
+  return index;
+}
+
+// One cell per face: its domain with the score, or its status and reason.
+int write_atlas(const ModelRequest& q, const std::vector<FaceRun>& runs, std::string& error) {
+  std::vector<AtlasCell> cells;
+  for (const FaceRun& r : runs) {
+    AtlasCell c;
+    c.title = r.name + " " + r.face->surface_type + " (" + std::to_string(r.face->triangles.size() / 3) + " tris)";
+    c.snap = r.started ? &r.outcome.snap : nullptr;
+    char buf[96];
+    if (c.snap && c.snap->has_result)
+      std::snprintf(buf, sizeof buf, "score %.4f, %lld flips, %lld bnd int%s", c.snap->report.score,
+                    static_cast<long long>(c.snap->report.flipped_triangles),
+                    static_cast<long long>(c.snap->report.boundary_intersections),
+                    r.exit_code == kExitOk ? "" : " (not converged)");
+    c.caption = c.snap && c.snap->has_result ? std::string(buf) : std::string(status_of(r)) + ": " + r.reason;
+    cells.push_back(std::move(c));
+  }
+  if (!make_parent_dirs(q.atlas_path, error)) return kExitIo;
+  const std::string title = std::filesystem::path(q.model_path).filename().string() + ": UV domains";
+  return write_model_atlas(q.atlas_path, title, cells, error) != kExitOk ? kExitIo : kExitOk;
+}
+
+int run_model(const std::vector<std::string>& argv) {
+  ModelRequest q;
+  if (const int code = parse_request(argv, q); code >= 0) return code;
+  std::string error;
+  wefm_cad::CadModel model;
+  if (const int code = load_cad_model_via_plugin(q.model_path, q.tess, model, error)) {
+    std::fprintf(stderr, "wefm: %s\n", error.c_str());
+    return code;
+  }
+  std::vector<FaceRun> runs;
+  if (const int code = write_face_inputs(q, model, runs); code >= 0) return code;
+  if (!q.quiet)
+    std::fprintf(stderr, "%s: %zu faces, %lld edges; read %.2f s, BRepMesh %.2f s (deflection %g), import %.2f s\n",
+                 q.model_path.c_str(), model.faces.size(), static_cast<long long>(model.edge_count), model.time_read,
+                 model.time_mesh, model.linear_deflection, model.time_extract);
+  const size_t n_threads = std::min<size_t>(static_cast<size_t>(q.jobs), std::max<size_t>(1, runs.size()));
+  const double wall = flatten_all_faces(q, runs, n_threads);
+
+  const ModelSummary sum = summarise(runs);
+  int exit_code = print_results(q, runs, sum, wall, n_threads);
+  const Json index = index_json(q, model, runs, sum, wall, n_threads);
+  if (const int code = write_file_atomically((q.outdir / "index.json").string(), index.dump(1) + '\n', error)) {
     std::fprintf(stderr, "wefm: %s\n", error.c_str());
     exit_code = std::max<int>(exit_code, code);
   }
-  if (args.has("atlas")) {
-    std::vector<AtlasCell> cells;
-    std::vector<std::string> captions;
-    for (const FaceRun& r : runs) {
-      AtlasCell c;
-      c.title = r.name + " " + r.face->surface_type + " (" + std::to_string(r.face->triangles.size() / 3) + " tris)";
-      c.snap = r.started ? &r.outcome.snap : nullptr;
-      char buf[96];
-      if (c.snap && c.snap->has_result)
-        std::snprintf(buf, sizeof buf, "score %.4f, %lld flips, %lld bnd int%s", c.snap->report.score,
-                      static_cast<long long>(c.snap->report.flipped_triangles),
-                      static_cast<long long>(c.snap->report.boundary_intersections),
-                      r.exit_code == kExitOk ? "" : " (not converged)");
-      c.caption = c.snap && c.snap->has_result ? std::string(buf) : std::string(status_of(r)) + ": " + r.reason;
-      cells.push_back(std::move(c));
-    }
-    const std::string atlas = args.value("atlas");
-    if (!make_parent_dirs(atlas, error) ||
-        write_model_atlas(atlas, std::filesystem::path(model_path).filename().string() + ": UV domains", cells, error) != kExitOk) {
+  if (!q.atlas_path.empty()) {
+    if (const int code = write_atlas(q, runs, error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
-      exit_code = std::max<int>(exit_code, kExitIo);
+      exit_code = std::max<int>(exit_code, code);
     }
   }
   if (interrupted()) exit_code = stop_exit_code();
