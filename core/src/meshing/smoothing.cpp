@@ -239,8 +239,11 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
   if (bad.empty()) return 0;
   // As at the pass's start; changed triangles are marked and their neighbours found by content.
   const NodeTriangles around = node_triangles(uv.size(), tris);
+  const Index old_nodes = static_cast<Index>(uv.size());
   std::vector<char> touched(tris.size(), 0);
-  const Index first_new = static_cast<Index>(tris.size());
+  // Per node (the pass's new nodes included), the triangles the pass added on it, in the order
+  // added: added triangles never change, and a rejected split takes its two back.
+  std::vector<std::vector<Index>> added(uv.size());
   std::int64_t splits = 0;
   for (const Index t : bad) {
     if (touched[static_cast<size_t>(t)]) continue;
@@ -272,11 +275,11 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
         const Tri3& U = tris[static_cast<size_t>(u)];
         return U[0] == w || U[1] == w || U[2] == w;
       };
-      if (static_cast<size_t>(w) + 1 < around.start.size())
+      if (w < old_nodes)
         for (Index k = around.start[static_cast<size_t>(w)]; k < around.start[static_cast<size_t>(w) + 1]; ++k)
           if (holds(around.items[static_cast<size_t>(k)])) st.push_back(around.items[static_cast<size_t>(k)]);
-      for (Index u = first_new; u < static_cast<Index>(tris.size()); ++u)
-        if (holds(u)) st.push_back(u);
+      const auto& mine = added[static_cast<size_t>(w)];
+      st.insert(st.end(), mine.begin(), mine.end());
       return st;
     };
     // The worst of the given triangles and of the triangles at the corners inside the domain: the
@@ -303,6 +306,9 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     const Index t2 = static_cast<Index>(tris.size()), s2 = t2 + 1;
     tris[static_cast<size_t>(t)] = {a, b, v}, tris[static_cast<size_t>(s)] = {d, c, v};
     tris.push_back({a, v, c}), tris.push_back({d, v, b});
+    added.emplace_back();
+    for (Index w : {a, v, c}) added[static_cast<size_t>(w)].push_back(t2);
+    for (Index w : {d, v, b}) added[static_cast<size_t>(w)].push_back(s2);
     const std::vector<Index> star{t, s, t2, s2};
     NodeStar moving(uv, xyz, tris);
     auto move = [&](Index w, const std::vector<Index>& ts) {
@@ -320,6 +326,9 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     } else {
       tris[static_cast<size_t>(t)] = T, tris[static_cast<size_t>(s)] = S;
       tris.resize(static_cast<size_t>(t2));
+      for (Index w : {b, v, d}) added[static_cast<size_t>(w)].pop_back();
+      for (Index w : {c, v, a}) added[static_cast<size_t>(w)].pop_back();
+      added.pop_back();
       uv.pop_back(), xyz.pop_back();
       for (size_t k = 0; k < 4; ++k) uv[static_cast<size_t>(corners[k])] = uv0[k], xyz[static_cast<size_t>(corners[k])] = xyz0[k];
     }
