@@ -73,8 +73,8 @@ std::vector<OptionSpec> mesh_model_specs() {
                                 "triangles still written as its own)", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; a face whose opposite sides get different node "
                               "counts is meshed free, with a note)", "", true},
-      {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, two circles and a seam, is "
-                                 "meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
+      {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, a seam and two ends with as "
+                                 "many segments, is meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
       {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "
                                "and cap each face's refinement at N; 0 = no limit", std::to_string(kDefaultMaxElements), false},
@@ -113,6 +113,7 @@ struct FaceMeshRun {
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
   std::string type = "free";          // how it was meshed: free or transfinite
   std::string mapped_refused;         // why a face meant to be mapped was meshed free
+  LambdaStats quality;                // of its final mesh, for the table and the report
 };
 
 // The run of a face to be meshed again: nothing but its face and how often its edges were refined.
@@ -190,10 +191,14 @@ void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, const wefm_m
   wefm_domain_mesh* dm_raw = nullptr;
   {
     WatchedFace watched(&watcher, raw);
-    st = mapped ? wefm_face_mesh_domain(raw, mapped, &dm_raw) : WEFM_ERROR_UNSUPPORTED;
-    r.type = mapped ? "transfinite" : "free";
-    if (st == WEFM_ERROR_UNSUPPORTED) {
-      if (mapped) r.mapped_refused = wefm_face_last_error(raw);
+    bool free_mesh = !mapped;
+    if (mapped) {
+      r.type = "transfinite";
+      st = wefm_face_mesh_domain(raw, mapped, &dm_raw);
+      free_mesh = st == WEFM_ERROR_UNSUPPORTED;
+      if (free_mesh) r.mapped_refused = wefm_face_last_error(raw);
+    }
+    if (free_mesh) {
       r.type = "free";
       st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
     }
@@ -770,7 +775,7 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
               "time", "status");
   int failed = 0, exit_code = kExitOk;
   for (const FaceMeshRun& r : runs) {
-    const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
+    const LambdaStats& fq = r.quality;
     std::printf("f%03d   %-10s %8lld %9.4f %8.4f %7.1f%% %9.4f %7.2fs  %s\n", r.face->index, r.face->surface_type.c_str(),
                 static_cast<long long>(fq.triangles), fq.lambda_mesh, fq.lambda_min, 100 * fq.fraction_below_0_6, r.score,
                 r.time_solve + r.time_mesh, r.status.c_str());
@@ -833,7 +838,7 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
                     {"weld", t.weld}, {"check", t.check}, {"write", t.write}};
   Json faces = Json::array();
   for (const FaceMeshRun& r : runs) {
-    const LambdaStats fq = ModelMesh::lambda_of(r.xyz, r.tris);
+    const LambdaStats& fq = r.quality;
     faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
                      {"reason", r.reason}, {"elements", fq.triangles},
                      {"type", r.type},
@@ -877,6 +882,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   const double weld_tolerance = 1e-7 * model.bbox_diagonal;
   auto t0 = Clock::now();
   mesh_all_faces(q, model, size, plan, runs, n_threads, weld_tolerance);
+  for (FaceMeshRun& r : runs) r.quality = ModelMesh::lambda_of(r.xyz, r.tris);
   t.faces = since(t0);
 
   t0 = Clock::now();

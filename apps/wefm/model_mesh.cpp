@@ -17,6 +17,14 @@ uint64_t cell_key(int64_t i, int64_t j, int64_t k) {
          static_cast<uint64_t>(k) * 83492791ULL;
 }
 
+// Spreads a cell key over PointGrid's slots (the keys of neighbouring cells differ in few bits).
+size_t spread(uint64_t key) {
+  key ^= key >> 33;
+  key *= 0xff51afd7ed558ccdULL;
+  key ^= key >> 33;
+  return static_cast<size_t>(key);
+}
+
 uint64_t pair_key(int32_t a, int32_t b) {
   if (a > b) std::swap(a, b);
   return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
@@ -74,18 +82,6 @@ class EdgeTable {
 constexpr double kZeroAreaLambda = 1e-6;
 // How many unexplained edges conformity() lists by position.
 constexpr size_t kListedDefects = 20;
-
-}  // namespace
-
-namespace {
-
-// Spreads a cell key over the table's slots (the keys of neighbouring cells differ in few bits).
-size_t spread(uint64_t key) {
-  key ^= key >> 33;
-  key *= 0xff51afd7ed558ccdULL;
-  key ^= key >> 33;
-  return static_cast<size_t>(key);
-}
 
 }  // namespace
 

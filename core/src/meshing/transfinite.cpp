@@ -80,6 +80,7 @@ std::array<LoopNodes, 4> sides_from_given(const TriMesh& mesh, const Topology& t
     fail(Errc::unsupported, "transfinite meshing with the caller's edge nodes needs opposite sides with as many nodes (sides have " +
                                 std::to_string(side[0].uv.size()) + ", " + std::to_string(side[1].uv.size()) + ", " +
                                 std::to_string(side[2].uv.size()) + " and " + std::to_string(side[3].uv.size()) + " nodes)");
+  check_elements(static_cast<Index>(side[0].uv.size()) - 1, static_cast<Index>(side[1].uv.size()) - 1, o);
   return side;
 }
 
@@ -109,7 +110,6 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
   const auto c = transfinite_corners(topo, uv, o.corners);
   std::array<LoopNodes, 4> side = given.empty() ? uniform_sides(mesh, topo, uv, o, c) : sides_from_given(mesh, topo, uv, o, given, c);
   const Index n = static_cast<Index>(side[0].uv.size()) - 1, m = static_cast<Index>(side[1].uv.size()) - 1;
-  check_elements(n, m, o);
   // Sides running in +xi (bottom, top) and +eta (left, right).
   for (size_t k : {size_t(2), size_t(3)}) {
     std::reverse(side[k].uv.begin(), side[k].uv.end());
