@@ -128,7 +128,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
 
   control.check(0.8);
   t0 = std::chrono::steady_clock::now();
-  improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, o.smoothing_iterations, map);
+  improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, o.smoothing_iterations, map, control);
   out.report.time_smooth = seconds_since(t0);
   out.nodes_per_element = 3;
   for (const auto& t : tris) out.elements.insert(out.elements.end(), t.begin(), t.end());

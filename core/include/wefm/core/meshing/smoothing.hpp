@@ -8,12 +8,14 @@
 #include <array>
 #include <vector>
 
+#include "wefm/core/meshing/mesh_control.hpp"
 #include "wefm/core/meshing/surface_map.hpp"
 
 namespace wefm::meshing {
 
 // Nodes below `fixed` (the boundary nodes) never move. Returns the number of accepted moves.
+// `control` is checked before every pass (fractions 0.8 to 0.95): a stop throws Error(cancelled).
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<std::array<Index, 3>>& tris, Index fixed,
-                           int iterations, const SurfaceMap& map);
+                           int iterations, const SurfaceMap& map, const MeshControl& control);
 
 }  // namespace wefm::meshing
