@@ -171,9 +171,14 @@ def wait_for_handlers(p, limit=30.0):
     Before main() a signal ends the process by default, which says nothing about the tool; on a
     loaded machine the loader alone can take longer than any fixed delay."""
     want = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
+    tool = os.path.realpath(cli_tests.WEFM)
     t0 = time.monotonic()
     while p.poll() is None and time.monotonic() - t0 < limit:
         try:
+            # Between fork and exec the child is still this Python, whose masks say nothing about the tool.
+            if os.path.realpath(f"/proc/{p.pid}/exe") != tool:
+                time.sleep(0.002)
+                continue
             with open(f"/proc/{p.pid}/status") as f:
                 masks = {l.split(":")[0]: int(l.split()[1], 16) for l in f if l.startswith(("SigCgt:", "SigBlk:"))}
         except (OSError, ValueError):
