@@ -18,6 +18,11 @@ constexpr double kNarrowestFraction = 8;
 // Segments along a strip of width w at this many w have Lo lambda about 0.6 across it (0.87 at 1 w,
 // 0.33 at 5 w): a narrow face or part of a face is meshed at this many times its width.
 constexpr double kWidthFactor = 2.5;
+// Two edges of a face closer than this fraction of the model's diagonal lie on each other: far below
+// any width a tessellation at the default deflection (a thousandth) shows, far above the rounding of
+// one curve's points computed twice. Not the deflection itself: real gaps and slivers that thin
+// exist (a millimetre on a robot two metres across), and their faces are narrow.
+constexpr double kCoincident = 1e-6;
 // Edge segments shrink towards a narrow part of a face down to h / this: a local narrowing costs a
 // few segments (they grow back by g per unit length), a face that is a needle all along its length
 // keeps slivers.
@@ -203,8 +208,10 @@ constexpr double kAcrossRatio = 0.35;
 // sample to the nearest point of another edge of the face that lies across the face from it (on
 // another loop, or far round the same loop compared with the distance, and each on the face's side
 // of the other). Widths above `reach` do
-// not matter and are not searched for.
-void lower_by_width(const CadFace& f, double reach, const std::function<void(long long, size_t, double)>& width_at,
+// not matter and are not searched for; distances up to `coincide` are none: two edges of a face
+// that lie on each other are one curve twice (a closed surface bounded by two edges where one seam
+// would do), and the face reaches round from one to the other.
+void lower_by_width(const CadFace& f, double reach, double coincide, const std::function<void(long long, size_t, double)>& width_at,
                     const std::map<long long, SizeProfile>& profiles) {
   struct Use {
     size_t loop;
@@ -299,7 +306,7 @@ void lower_by_width(const CadFace& f, double reach, const std::function<void(lon
           const double t = dd > 0 ? std::clamp((d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / dd, 0.0, 1.0) : 0.0;
           const double x[3] = {w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]};
           const double dist = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
-          if (dist >= width) continue;
+          if (dist >= width || dist <= coincide) continue;
           const double sq = arcs[b][i] + t * (arcs[b][i + 1] - arcs[b][i]);
           // Across the face, not across a hole or round the outside: each point on the face's
           // side of the other's segment.
@@ -378,7 +385,7 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
     v = std::min(v, std::max(floor, kWidthFactor * width));
   };
   for (const CadFace& f : model.faces)
-    if (f.error.empty()) lower_by_width(f, h / kWidthFactor, lower, profiles);
+    if (f.error.empty()) lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, lower, profiles);
   std::vector<double> vertex_size(n_vertices, 1e300);
   for (auto& [id, p] : profiles) {
     const Chain& c = chains.at(id);
@@ -414,8 +421,10 @@ double chain_length(const CadFace& f, const CadEdge& e) {
 
 // The face's smaller radius of curvature, from its facets: across each facet edge inside the face,
 // the mean distance of the two opposite corners from the edge over the angle between the facets'
-// normals (on a cylinder's facets, its radius). A low quantile, not the minimum, so one skewed facet
-// does not decide it; infinite on a flat face.
+// normals (on a cylinder's facets, its radius). A low quantile by area, not the minimum nor a
+// quantile by count: a tessellation of a freeform face has needle facets along its edges whose
+// heights, over any angle, give radii a thousandth of the surface's, and there may be many of them.
+// Infinite on a flat face.
 double curvature_radius(const CadFace& f) {
   const size_t n = f.triangles.size() / 3;
   auto point = [&](int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; };
@@ -435,7 +444,7 @@ double curvature_radius(const CadFace& f) {
     return le > 0 ? std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / le : 0.0;
   };
   std::unordered_map<unsigned long long, size_t> first;  // directed edge -> the corner opposite it
-  std::vector<double> radii;
+  std::vector<std::pair<double, double>> radii;  // (radius, twice the two facets' area)
   for (size_t t = 0; t < n; ++t)
     for (size_t c = 0; c < 3; ++c) {
       const int32_t va = f.triangles[3 * t + c], vb = f.triangles[3 * t + (c + 1) % 3];
@@ -450,12 +459,16 @@ double curvature_radius(const CadFace& f) {
       if (!(angle > 1e-3)) continue;
       const double h0 = off_line(point(f.triangles[it->second]), point(va), point(vb));
       const double h1 = off_line(point(f.triangles[3 * t + (c + 2) % 3]), point(va), point(vb));
-      radii.push_back(0.5 * (h0 + h1) / angle);
+      radii.emplace_back(0.5 * (h0 + h1) / angle, distance(point(va), point(vb)) * (h0 + h1));
     }
   if (radii.size() < 4) return std::numeric_limits<double>::infinity();
-  const size_t q = radii.size() / 10;
-  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(q), radii.end());
-  return radii[q];
+  std::sort(radii.begin(), radii.end());
+  double total = 0;
+  for (const auto& r : radii) total += r.second;
+  double below = 0;
+  for (const auto& [r, area] : radii)
+    if ((below += area) >= 0.1 * total) return r;
+  return radii.back().first;
 }
 
 // Whether all the face's facet normals lie within kLittleTurn of their area-weighted mean: a fillet

@@ -414,6 +414,115 @@ TEST_CASE("edge segments shrink where a face is narrow, not across a gap outside
   CHECK(*std::max_element(far_side.begin(), far_side.end()) > 0.85 * h);
 }
 
+TEST_CASE("two edges lying on each other bound a closed surface, not a face of width zero") {
+  // A tube of radius 10 and length 100 tessellated by hand (48 facets round, 20 along) and cut
+  // open along a line as two edges of their own (ids 2 and 4), where a seam would be one edge used
+  // twice: IGES files bound closed B-spline surfaces so (pyocc_surf114.igs in shared/data/cad-more). The face is 2 pi 10 wide across the cut,
+  // not 0: at h = 20 (size 10, the radius) each cut edge gets about 10 segments, not the
+  // narrow-face floor of h / 32 (160 segments, and a face of tens of thousands of triangles).
+  constexpr int kRound = 48, kAlong = 20;
+  wefm_cad::CadModel m;
+  m.path = "hand-made tube";
+  m.format = "brep";
+  m.bbox_diagonal = std::sqrt(20.0 * 20.0 * 2 + 100.0 * 100.0);
+  m.linear_deflection = 1e-3 * m.bbox_diagonal;
+  CadFace f;
+  f.index = 1;
+  f.surface_type = "bspline";
+  auto id = [](int i, int j) { return static_cast<int32_t>(i * (kRound + 1) + j); };
+  // The cut's second edge lies a hair past the first (a two-millionth of the diagonal), on the
+  // face's side of it: one curve's points computed twice.
+  const double past = 0.5e-6 * m.bbox_diagonal / 10;
+  for (int i = 0; i <= kAlong; ++i)
+    for (int j = 0; j <= kRound; ++j) {
+      const double a = 2 * kPi * j / kRound + (j == kRound ? past : 0.0);
+      f.xyz.insert(f.xyz.end(), {10 * std::cos(a), 10 * std::sin(a), 100.0 * i / kAlong});
+    }
+  for (int i = 0; i < kAlong; ++i)
+    for (int j = 0; j < kRound; ++j)
+      f.triangles.insert(f.triangles.end(), {id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i + 1, j)});
+  auto chain = [&](long long edge_id, int i0, int j0, int di, int dj, int n) {
+    wefm_cad::CadEdge e;
+    e.id = edge_id;
+    e.curve_type = "BSplineCurve";
+    for (int k = 0; k <= n; ++k) e.vertices.push_back(id(i0 + k * di, j0 + k * dj));
+    return e;
+  };
+  f.edges = {chain(1, 0, 0, 0, 1, kRound), chain(2, 0, kRound, 1, 0, kAlong), chain(3, kAlong, kRound, 0, -1, kRound),
+             chain(4, kAlong, 0, -1, 0, kAlong)};
+  f.loops = {{{0, false}, {1, false}, {2, false}, {3, false}}};
+  f.outer_loop = 0;
+  m.faces.push_back(f);
+  m.edge_count = 4;
+
+  const double h = 20;
+  const std::vector<double> sizes = wefm_cad::local_face_sizes(m, h);
+  REQUIRE(sizes.size() == 1);
+  CHECK(sizes[0] == doctest::Approx(10.0).epsilon(0.05));
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, sizes, 0.3);
+  for (long long cut : {2LL, 4LL}) {
+    CAPTURE(cut);
+    REQUIRE(nodes.count(cut));
+    const size_t segments = nodes.at(cut).xyz.size() / 3 - 1;
+    CHECK(segments >= 8);
+    CHECK(segments <= 15);
+  }
+}
+
+TEST_CASE("a face's radius of curvature is not set by the needle facets along its edges") {
+  // A quarter of a tube of radius 100, 100 long, tessellated by hand (30 x 20 cells), with a strip
+  // 0.01 high along its lower edge fanned into 600 needles whose lower corners zigzag 0.001 in and
+  // out, as a tessellator leaves along the edges of freeform faces. The needles bend by tenths of a
+  // radian over thousandths: radii of a hundredth, on a quarter of the facet edges. By area they
+  // are nothing: the face is a gentle curve and gets h (20), not the h / 8 floor.
+  constexpr int kRound = 30, kAlong = 20, kNeedles = 20;  // needles per cell of the lower row
+  constexpr double kR = 100, kTurn = kPi / 2;
+  wefm_cad::CadModel m;
+  m.path = "hand-made quarter tube";
+  m.format = "brep";
+  m.bbox_diagonal = std::sqrt(3 * 100.0 * 100.0);
+  m.linear_deflection = 1e-3 * m.bbox_diagonal;
+  CadFace f;
+  f.index = 1;
+  f.surface_type = "bspline";
+  auto add = [&](double a, double z, double r) {
+    f.xyz.insert(f.xyz.end(), {r * std::cos(a), r * std::sin(a), z});
+    return static_cast<int32_t>(f.xyz.size() / 3 - 1);
+  };
+  std::vector<int32_t> grid, low;
+  for (int i = 0; i <= kAlong; ++i)
+    for (int j = 0; j <= kRound; ++j) grid.push_back(add(kTurn * j / kRound, 100.0 * i / kAlong, kR));
+  for (int k = 0; k <= kRound * kNeedles; ++k) low.push_back(add(kTurn * k / (kRound * kNeedles), -0.01, kR + (k % 2 ? 1e-3 : 0.0)));
+  auto g = [&](int i, int j) { return grid[static_cast<size_t>(i * (kRound + 1) + j)]; };
+  for (int i = 0; i < kAlong; ++i)
+    for (int j = 0; j < kRound; ++j) f.triangles.insert(f.triangles.end(), {g(i, j), g(i, j + 1), g(i + 1, j + 1), g(i, j), g(i + 1, j + 1), g(i + 1, j)});
+  for (int j = 0; j < kRound; ++j) {
+    for (int k = j * kNeedles; k < (j + 1) * kNeedles; ++k)
+      f.triangles.insert(f.triangles.end(), {low[static_cast<size_t>(k)], low[static_cast<size_t>(k + 1)], g(0, j)});
+    f.triangles.insert(f.triangles.end(), {low[static_cast<size_t>((j + 1) * kNeedles)], g(0, j + 1), g(0, j)});
+  }
+  wefm_cad::CadEdge bottom, right, top, left;
+  bottom.vertices = low;
+  right.vertices.push_back(low.back());
+  for (int i = 0; i <= kAlong; ++i) right.vertices.push_back(g(i, kRound));
+  for (int j = kRound; j >= 0; --j) top.vertices.push_back(g(kAlong, j));
+  for (int i = kAlong; i >= 0; --i) left.vertices.push_back(g(i, 0));
+  left.vertices.push_back(low.front());
+  long long next_id = 1;
+  for (wefm_cad::CadEdge* e : {&bottom, &right, &top, &left}) {
+    e->id = next_id++;
+    e->curve_type = "BSplineCurve";
+    f.edges.push_back(*e);
+  }
+  f.loops = {{{0, false}, {1, false}, {2, false}, {3, false}}};
+  f.outer_loop = 0;
+  m.faces.push_back(f);
+  m.edge_count = 4;
+  const std::vector<double> sizes = wefm_cad::local_face_sizes(m, 20.0);
+  REQUIRE(sizes.size() == 1);
+  CHECK(sizes[0] == 20.0);
+}
+
 TEST_CASE("unreadable and unknown files are reported, not thrown") {
   wefm_cad::CadModel m;
   std::string error;
