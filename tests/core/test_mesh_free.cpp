@@ -177,3 +177,24 @@ TEST_CASE("improvement reports its passes, and a stop asked for during improveme
     CHECK(std::count_if(seen.begin(), seen.end(), improving) == 1);
   }
 }
+
+TEST_CASE("no mesh edge spans a half tube narrower than the size: edges between boundary nodes follow the surface") {
+  // A half tube of radius 2 and length 20 meshed at size 4: as wide as the tube is across, so the
+  // mesher joins its two straight edges by chords through the axis, where a half model's symmetry
+  // plane (another face) lies. Split where the surface bulges from them by more than a quarter of
+  // their length, every edge subtends at most about 106 degrees of the arc, and its middle stays
+  // 0.6 r or more from the axis (the ends' single arc segments excepted: they are the boundary).
+  const auto f = test::solved(test::cut_cylinder(12, 40, 2.0, 20.0, kPi));
+  meshing::MeshOptions o;
+  o.size = 4.0;
+  const auto dm = f.mesh_domain(o);
+  REQUIRE(dm.elements.size() >= 6);
+  double nearest = 1e300;
+  for (size_t t = 0; t + 2 < dm.elements.size(); t += 3)
+    for (size_t i = 0; i < 3; ++i) {
+      const Vec3 m = 0.5 * (dm.xyz[static_cast<size_t>(dm.elements[t + i])] + dm.xyz[static_cast<size_t>(dm.elements[t + (i + 1) % 3])]);
+      if (m.z() > 1e-9 && m.z() < 20 - 1e-9) nearest = std::min(nearest, std::hypot(m.x(), m.y()));
+    }
+  CHECK(nearest >= 0.55 * 2.0);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
+}

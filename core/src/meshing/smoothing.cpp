@@ -9,6 +9,18 @@
 #include "wefm/core/meshing/node_triangles.hpp"
 
 namespace wefm::meshing {
+
+bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, double shortest, Vec3* middle) {
+  if (!((b - a).squaredNorm() >= shortest * shortest)) return false;
+  Vec3 x;
+  if (!map.lift(0.5 * (ua + ub), x)) return false;
+  if (middle) *middle = x;
+  // From the line, not from the chord's middle: where the flattening stretches, the UV middle lifts
+  // to a point along the edge, not beside it.
+  const Vec3 e = b - a;
+  return (x - a).cross(e).norm() > kSpanSag * e.squaredNorm();
+}
+
 namespace {
 
 using Tri3 = std::array<Index, 3>;
@@ -29,7 +41,8 @@ double quality(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index a,
   return lo_lambda(xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], xyz[static_cast<size_t>(c)]);
 }
 
-std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris) {
+std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
+                       double span_floor) {
   // The triangles around each node, as they were when the pass started (counting sort): the
   // neighbour across an edge is the other triangle around one of its ends that holds the edge
   // reversed. Flipped triangles are marked and left alone for the rest of the pass, so the stale
@@ -75,7 +88,7 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
       const double q1 = quality(uv, xyz, a, b, d);
       if (!(q1 > old_q + 1e-9)) continue;
       const double new_q = std::min(q1, quality(uv, xyz, d, c, a));
-      if (new_q > old_q + 1e-9) {
+      if (new_q > old_q + 1e-9 && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span_floor))) {
         tris[static_cast<size_t>(t)] = {a, b, d};
         tris[static_cast<size_t>(s)] = {d, c, a};
         touched[static_cast<size_t>(s)] = touched[static_cast<size_t>(t)] = 1;
@@ -336,10 +349,52 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
   return splits;
 }
 
+// Splits edges between two boundary nodes that span the face (spans_face) at their UV middle,
+// lifted, the new node then moved for the worst quality of its four triangles. The mesher splits
+// them before improvement and flips never make one; this mends what the moves left. Returns the number of edges split; an edge whose triangle another split changed
+// waits for the next call.
+std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
+                            double span_floor) {
+  const NodeTriangles around = node_triangles(uv.size(), tris);
+  std::vector<char> touched(tris.size(), 0);
+  NodeStar star(uv, xyz, tris);
+  std::int64_t splits = 0;
+  const Index count = static_cast<Index>(tris.size());
+  for (Index t = 0; t < count; ++t)
+    for (int i = 0; i < 3 && !touched[static_cast<size_t>(t)]; ++i) {
+      const Tri3 T = tris[static_cast<size_t>(t)];
+      const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)], c = T[static_cast<size_t>((i + 2) % 3)];
+      if (a >= fixed || b >= fixed) continue;
+      // The triangle across a -> b: around a, the one holding b -> a.
+      Index s = -1, d = -1;
+      for (Index k = around.start[static_cast<size_t>(a)]; k < around.start[static_cast<size_t>(a) + 1] && s < 0; ++k) {
+        const Index u = around.items[static_cast<size_t>(k)];
+        const Tri3& U = tris[static_cast<size_t>(u)];
+        for (int m = 0; m < 3; ++m)
+          if (U[static_cast<size_t>(m)] == b && U[static_cast<size_t>((m + 1) % 3)] == a) s = u, d = U[static_cast<size_t>((m + 2) % 3)];
+      }
+      if (s < 0 || touched[static_cast<size_t>(s)]) continue;  // a boundary segment, or changed already
+      const P2 middle = 0.5 * (uv[static_cast<size_t>(a)] + uv[static_cast<size_t>(b)]);
+      Vec3 x;
+      if (!spans_face(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span_floor, &x)) continue;
+      const Index v = static_cast<Index>(uv.size());
+      uv.push_back(middle), xyz.push_back(x);
+      const Index t2 = static_cast<Index>(tris.size());
+      tris[static_cast<size_t>(t)] = {a, v, c}, tris[static_cast<size_t>(s)] = {b, v, d};
+      tris.push_back({v, b, c}), tris.push_back({v, a, d});
+      touched[static_cast<size_t>(t)] = touched[static_cast<size_t>(s)] = 1;
+      const std::array<Index, 4> four{t, s, t2, t2 + 1};
+      star.reset(four.data(), four.data() + 4);
+      move_node(uv, xyz, tris, v, star, map);
+      ++splits;
+    }
+  return splits;
+}
+
 }  // namespace
 
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, int iterations, const SurfaceMap& map,
-                           const MeshControl& control) {
+                           const MeshControl& control, double span_floor) {
   // Each pass over a face of millions of triangles takes a while: the caller's stop is heard
   // between passes, and the fraction reported climbs from 0.8 towards 0.95 pass by pass.
   int passes = 0;
@@ -354,7 +409,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
   auto flips = [&] {
     for (int k = 0; k < 8; ++k) {
       check();
-      if (flip_pass(uv, xyz, tris) < few_flips) break;
+      if (flip_pass(uv, xyz, tris, fixed, map, span_floor) < few_flips) break;
     }
   };
   std::int64_t total = 0;
@@ -376,6 +431,10 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
     check();
     if (split_pass(uv, xyz, tris, fixed, map) == 0) break;
     flips();
+  }
+  for (int it = 0; it < kSplitRounds; ++it) {
+    check();
+    if (split_spanning(uv, xyz, tris, fixed, map, span_floor) == 0) break;
   }
   return total;
 }

@@ -13,9 +13,25 @@
 
 namespace wefm::meshing {
 
+// An edge inside the face between two boundary nodes whose middle lies on the surface farther than
+// this fraction of its length from the edge's line spans the face instead of following it (a
+// chord across a quarter-round fillet is 0.21 of its length from the arc, across a half tube 0.5).
+// Across a half tube or the tip of a half cone such a chord lies where another face is (the
+// symmetry plane of a half model), and the two faces' meshes then share edges and triangles. Size
+// and quality never see it: in 3D the triangles on it are well shaped and no larger than h.
+constexpr double kSpanSag = 0.25;
+
+// Whether the edge a-b (UV ua-ub) spans the face as above; edges shorter than `shortest` never do:
+// at a sharp corner or a cusp short edges bulge as much, and splitting them leaves slivers where no
+// other face lies. `middle`, if given, gets the surface point at the UV middle.
+bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, double shortest,
+                Vec3* middle = nullptr);
+
 // Nodes below `fixed` (the boundary nodes) never move. Returns the number of accepted moves.
 // `control` is checked before every pass (fractions 0.8 to 0.95): a stop throws Error(cancelled).
+// Flips never make an edge that spans the face (spans_face, edges from `span_floor` long), and the
+// last pass splits those the moves left.
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<std::array<Index, 3>>& tris, Index fixed,
-                           int iterations, const SurfaceMap& map, const MeshControl& control);
+                           int iterations, const SurfaceMap& map, const MeshControl& control, double span_floor);
 
 }  // namespace wefm::meshing
