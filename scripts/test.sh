@@ -2,7 +2,8 @@
 # The whole test suite (README "Quick start"):
 #   1. release      CHOLMOD build, ctest
 #   2. permissive   Eigen-only build, ctest
-#   3. sanitize     Debug + ASan + UBSan build, the whole ctest suite under it but cad.model_mesh
+#   3. sanitize     ASan + UBSan build (Debug at -O1: -O0 ran the suite three times slower), the whole
+#                   ctest suite under it but cad.model_mesh
 #   4. tsan         ThreadSanitizer build of the library and the concurrency test, run
 #   5. fuzz         each libFuzzer target for WEFM_FUZZ_SECONDS (default 30) with clang (scripts/fuzz.sh)
 # WEFM_TEST_STAGES selects stages (default "release permissive sanitize tsan fuzz"); stages whose
