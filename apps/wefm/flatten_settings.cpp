@@ -35,6 +35,18 @@ bool get_int(const ParsedArgs& args, const char* name, int& out, std::string& er
   return false;
 }
 
+// The library's own range checks, on a face made for nothing else, before any input is read: a
+// command over a CAD model would otherwise import it (minutes on a large one) and then fail every
+// face with the same message.
+bool library_accepts(const wefm_options& o, std::string& error) {
+  wefm_face* probe = nullptr;
+  if (wefm_face_create(&probe) != WEFM_OK) return true;  // no memory for a handle: the run says so itself
+  const bool ok = wefm_face_set_options(probe, &o) == WEFM_OK;
+  if (!ok) error = std::string("invalid option: ") + wefm_face_last_error(probe);
+  wefm_face_release(probe);
+  return ok;
+}
+
 }  // namespace
 
 std::vector<OptionSpec> solver_option_specs() {
@@ -146,7 +158,7 @@ bool apply_solver_options(const ParsedArgs& args, FlattenSettings& settings, std
     // The commands parse their options first thing, so the deadline counts from the start.
     set_time_limit(seconds);
   }
-  return true;
+  return library_accepts(o, error);
 }
 
 void use_all_threads_unless_given(const ParsedArgs& args, wefm_options& options) {

@@ -63,6 +63,27 @@ def check_plugin(wefm, model, tmp):
     assert p.returncode == 0, p.stderr
 
 
+def check_options_first(wefm, model, tmp):
+    """A solver option the library refuses is a usage error (exit 2) before the model is read: no face is
+    imported or attempted, nothing is written. Before, mesh-model and model imported the whole model and
+    then failed every face with the same message (exit 5, and mesh-model wrote an empty mesh)."""
+    folder = os.path.join(tmp, "faces")
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, "tri.obj"), "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.2\nf 1 2 3\nf 2 4 3\n")
+    for bad in (["--s", "5"], ["--min-beta", "-1"], ["--k", "2"]):
+        for cmd in (["mesh-model", model, "--size", "2", "-o", os.path.join(tmp, "bad.msh")],
+                    ["model", model, "-o", os.path.join(tmp, "bad_model")],
+                    ["batch", folder, "-o", os.path.join(tmp, "bad_batch")]):
+            p = subprocess.run([wefm, *cmd, *bad], capture_output=True, text=True)
+            what = f"{cmd[0]} {' '.join(bad)}"
+            assert p.returncode == 2, f"{what}: exit {p.returncode}: {p.stderr}"
+            assert "invalid option" in p.stderr and bad[0][2:].replace("-", "_") in p.stderr, f"{what}: {p.stderr}"
+            assert "f001" not in p.stdout + p.stderr and "BRepMesh" not in p.stdout + p.stderr, f"{what}: worked first"
+            for out in ("bad.msh", "bad_model", "bad_batch"):
+                assert not os.path.exists(os.path.join(tmp, out)), f"{what}: wrote {out}"
+
+
 def main():
     wefm, model = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as tmp:
@@ -100,6 +121,7 @@ def main():
         p = subprocess.run([wefm, "model", os.path.join(tmp, "nope.step"), "-o", out], capture_output=True, text=True)
         assert p.returncode == 3 and "nope.step" in p.stderr, (p.returncode, p.stderr)
         check_plugin(wefm, model, tmp)
+        check_options_first(wefm, model, tmp)
     print("ok")
 
 
