@@ -644,10 +644,16 @@ struct ModelPlan {
   double time = 0;
 };
 
-// Returns -1 to go on, or kExitSolver when the model would need more than the limits allow. Merging
-// faces (virtual_faces) changes `model`.
+// Returns -1 to go on, kExitUsage for a --transfinite face the model does not have, or kExitSolver
+// when the model would need more than the limits allow. Merging faces (virtual_faces) changes `model`.
 int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size, ModelPlan& plan) {
   const auto t0 = Clock::now();
+  // A face number past the model's is a typo or the wrong model: meshing it all free would hide it.
+  if (!q.transfinite.empty() && *q.transfinite.rbegin() > static_cast<long long>(model.faces.size())) {
+    std::fprintf(stderr, "wefm mesh-model: --transfinite %lld: %s has %zu faces\n", *q.transfinite.rbegin(), q.model_path.c_str(),
+                 model.faces.size());
+    return kExitUsage;
+  }
   plan.face_sizes.assign(model.faces.size(), size);
   // Edges grade towards short neighbours at the rate (0.3 per unit length) the library grades a
   // face's inside from its short boundary segments, so the two meet without a jump.

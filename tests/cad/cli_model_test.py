@@ -82,6 +82,12 @@ def check_options_first(wefm, model, tmp):
             assert "f001" not in p.stdout + p.stderr and "BRepMesh" not in p.stdout + p.stderr, f"{what}: worked first"
             for out in ("bad.msh", "bad_model", "bad_batch"):
                 assert not os.path.exists(os.path.join(tmp, out)), f"{what}: wrote {out}"
+    # A face the model does not have (the cylinder has 3) is known after reading it: exit 2 all the same,
+    # nothing written, not a run with every face meshed free.
+    p = subprocess.run([wefm, "mesh-model", model, "--size", "2", "--transfinite", "4", "-o", os.path.join(tmp, "bad.msh")],
+                       capture_output=True, text=True)
+    assert p.returncode == 2 and "--transfinite 4" in p.stderr and "3 faces" in p.stderr, (p.returncode, p.stderr)
+    assert not os.path.exists(os.path.join(tmp, "bad.msh"))
 
 
 def main():
