@@ -1,10 +1,8 @@
 // wefm batch DIR|LISTFILE -o OUTDIR [-j N] [flatten options]
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -13,6 +11,7 @@
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "face_job.hpp"
+#include "face_threads.hpp"
 #include "mesh_formats.hpp"
 #include "output_file.hpp"
 #include "output_paths.hpp"
@@ -185,44 +184,32 @@ BatchRuns flatten_all_faces(const BatchRequest& q, const BatchPlan& plan) {
     for (size_t i = 0; i < items.size(); ++i)
       runs.skipped[i] = earlier_result(plan.outputs[i], plan.outputs[i].back(), runs.results[i]);
   CancelWatcher watcher;
-  std::atomic<size_t> next{0};
-  std::atomic<size_t> finished{0};
-  std::mutex print_mutex;
-  auto worker = [&] {
-    for (size_t i; !interrupted() && (i = next++) < items.size();) {
-      const BatchItem& item = items[i];
-      if (runs.skipped[i]) {
-        runs.started[i] = 1;
-        const size_t done = ++finished;
-        if (!q.quiet) {
-          std::lock_guard<std::mutex> lock(print_mutex);
-          std::fprintf(stderr, "[%zu/%zu] %s: skipped (outputs exist)\n", done, items.size(), item.name.c_str());
-        }
-        continue;
-      }
-      FaceJob job;
-      job.input = item.input;
-      job.output_mesh = plan.outputs[i][0];
-      job.settings = q.settings;
-      job.settings.seams_path = item.seams;
-      job.settings.topology_path = item.topology;
-      job.settings.report_path = plan.outputs[i][1];
-      job.watcher = &watcher;
-      runs.started[i] = 1;
-      runs.results[i] = run_face_job(job);
-      const size_t done = ++finished;
-      if (!q.quiet) {
-        std::lock_guard<std::mutex> lock(print_mutex);
-        const FaceOutcome& o = runs.results[i];
-        std::fprintf(stderr, "[%zu/%zu] %s: %s (%.2f s)%s%s\n", done, items.size(), item.name.c_str(),
-                     status_text(o, true), o.time.total, o.error.empty() ? "" : ": ", o.error.c_str());
-      }
-    }
+  auto work = [&](size_t i) {
+    runs.started[i] = 1;
+    if (runs.skipped[i]) return true;
+    const BatchItem& item = items[i];
+    FaceJob job;
+    job.input = item.input;
+    job.output_mesh = plan.outputs[i][0];
+    job.settings = q.settings;
+    job.settings.seams_path = item.seams;
+    job.settings.topology_path = item.topology;
+    job.settings.report_path = plan.outputs[i][1];
+    job.watcher = &watcher;
+    runs.results[i] = run_face_job(job);
+    return true;
   };
-  std::vector<std::thread> threads;
-  const size_t n_threads = std::min<size_t>(static_cast<size_t>(q.jobs), items.size());
-  for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
-  for (auto& t : threads) t.join();
+  auto finished = [&](size_t i, size_t done) {
+    if (q.quiet) return;
+    if (runs.skipped[i]) {
+      std::fprintf(stderr, "[%zu/%zu] %s: skipped (outputs exist)\n", done, items.size(), items[i].name.c_str());
+      return;
+    }
+    const FaceOutcome& o = runs.results[i];
+    std::fprintf(stderr, "[%zu/%zu] %s: %s (%.2f s)%s%s\n", done, items.size(), items[i].name.c_str(), status_text(o, true),
+                 o.time.total, o.error.empty() ? "" : ": ", o.error.c_str());
+  };
+  for_each_face(items.size(), static_cast<size_t>(q.jobs), work, finished);
   for (size_t i = 0; i < items.size(); ++i) runs.codes.push_back(runs.started[i] ? runs.results[i].exit_code : stop_exit_code());
   return runs;
 }

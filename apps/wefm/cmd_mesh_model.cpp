@@ -6,14 +6,12 @@
 // their shared edge nodes into one conforming surface mesh (model_mesh).
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -27,6 +25,7 @@
 #include "cad_edge_nodes.hpp"
 #include "cad_model.hpp"
 #include "cad_wefm.hpp"
+#include "face_threads.hpp"
 #include "flatten_settings.hpp"
 #include "mesh_formats.hpp"
 #include "mapped_tubes.hpp"
@@ -694,28 +693,22 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
   tf_options.type = WEFM_MESH_TRANSFINITE;
   tf_options.quads = 1;
   CancelWatcher watcher;
-  std::mutex print_mutex;
   auto mesh_faces = [&](const std::vector<size_t>& todo) {
-    std::atomic<size_t> next{0}, finished{0};
-    auto worker = [&] {
-      for (size_t k; !interrupted() && (k = next++) < todo.size();) {
-        const size_t i = todo[k];
-        FaceMeshRun& r = runs[i];
-        const bool map = q.transfinite.count(r.face->index) || plan.mapped.count(i);
-        wefm_mesh_options options = free_options, map_options = tf_options;
-        options.size = map_options.size = plan.face_sizes[i];
-        mesh_one_face(r, q.settings, options, map ? &map_options : nullptr, plan.edge_nodes, watcher);
-        const size_t done = ++finished;
-        if (!q.quiet) {
-          std::lock_guard<std::mutex> lock(print_mutex);
-          std::fprintf(stderr, "[%zu/%zu] f%03d %s: %s (%.2f s)\n", done, todo.size(), r.face->index,
-                       r.face->surface_type.c_str(), r.status.c_str(), r.time_solve + r.time_mesh);
-        }
-      }
+    auto work = [&](size_t k) {
+      const size_t i = todo[k];
+      const bool map = q.transfinite.count(runs[i].face->index) || plan.mapped.count(i);
+      wefm_mesh_options options = free_options, map_options = tf_options;
+      options.size = map_options.size = plan.face_sizes[i];
+      mesh_one_face(runs[i], q.settings, options, map ? &map_options : nullptr, plan.edge_nodes, watcher);
+      return true;
     };
-    std::vector<std::thread> threads;
-    for (size_t t = 0; t < std::min(n_threads, todo.size()); ++t) threads.emplace_back(worker);
-    for (auto& t : threads) t.join();
+    auto finished = [&](size_t k, size_t done) {
+      const FaceMeshRun& r = runs[todo[k]];
+      if (!q.quiet)
+        std::fprintf(stderr, "[%zu/%zu] f%03d %s: %s (%.2f s)\n", done, todo.size(), r.face->index, r.face->surface_type.c_str(),
+                     r.status.c_str(), r.time_solve + r.time_mesh);
+    };
+    for_each_face(todo.size(), n_threads, work, finished);
   };
   const std::vector<size_t> source = coincident_faces(model);
   auto mesh_or_copy = [&](const std::vector<size_t>& todo) {

@@ -5,12 +5,10 @@
 // `wefm flatten --topology` (face_job), one handle per thread. A face that fails to import or to
 // flatten is reported with its reason; the others carry on.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <thread>
@@ -23,6 +21,7 @@
 #include "cad_face_files.hpp"
 #include "cad_model.hpp"
 #include "face_job.hpp"
+#include "face_threads.hpp"
 #include "mesh_formats.hpp"
 #include "model_atlas.hpp"
 #include "names.hpp"
@@ -290,36 +289,31 @@ int write_face_inputs(const ModelRequest& q, const wefm_cad::CadModel& model, st
 // of a stop request gets the stop's exit code. Returns the wall time, seconds.
 double flatten_all_faces(const ModelRequest& q, std::vector<FaceRun>& runs, size_t n_threads) {
   CancelWatcher watcher;
-  std::atomic<size_t> next{0}, finished{0};
-  std::mutex print_mutex;
   const auto t0 = std::chrono::steady_clock::now();
-  auto worker = [&] {
-    for (size_t i; !interrupted() && (i = next++) < runs.size();) {
-      FaceRun& r = runs[i];
-      if (r.input_obj.empty()) continue;  // import failed: nothing to flatten
-      FaceJob job;
-      job.input = r.input_obj;
-      job.output_mesh = r.domain_obj;
-      job.face_tag = r.face->index;
-      job.settings = q.settings;
-      job.settings.topology_path = r.input_topo;
-      job.settings.report_path = r.report;
-      job.watcher = &watcher;
-      r.started = true;
-      r.outcome = run_face_job(job);
-      r.exit_code = r.outcome.exit_code;
-      r.reason = r.outcome.error;
-      const size_t done = ++finished;
-      if (!q.quiet) {
-        std::lock_guard<std::mutex> lock(print_mutex);
-        std::fprintf(stderr, "[%zu/%zu] %s %s: %s (%.2f s)\n", done, runs.size(), r.name.c_str(),
-                     r.face->surface_type.c_str(), status_of(r), r.outcome.time.total);
-      }
-    }
+  auto work = [&](size_t i) {
+    FaceRun& r = runs[i];
+    if (r.input_obj.empty()) return false;  // import failed: nothing to flatten
+    FaceJob job;
+    job.input = r.input_obj;
+    job.output_mesh = r.domain_obj;
+    job.face_tag = r.face->index;
+    job.settings = q.settings;
+    job.settings.topology_path = r.input_topo;
+    job.settings.report_path = r.report;
+    job.watcher = &watcher;
+    r.started = true;
+    r.outcome = run_face_job(job);
+    r.exit_code = r.outcome.exit_code;
+    r.reason = r.outcome.error;
+    return true;
   };
-  std::vector<std::thread> threads;
-  for (size_t t = 0; t < n_threads; ++t) threads.emplace_back(worker);
-  for (auto& t : threads) t.join();
+  auto finished = [&](size_t i, size_t done) {
+    const FaceRun& r = runs[i];
+    if (!q.quiet)
+      std::fprintf(stderr, "[%zu/%zu] %s %s: %s (%.2f s)\n", done, runs.size(), r.name.c_str(), r.face->surface_type.c_str(),
+                   status_of(r), r.outcome.time.total);
+  };
+  for_each_face(runs.size(), n_threads, work, finished);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   for (FaceRun& r : runs)
     if (!r.started && r.input_obj.size() && interrupted()) r.exit_code = stop_exit_code();
