@@ -204,6 +204,55 @@ void lower_by_turning(const CadFace& f, const CadEdge& e, double floor, SizeProf
 // than about 20 degrees. Points just round a blunter corner do not.
 constexpr double kAcrossRatio = 0.35;
 
+// Which side of each boundary segment (chain vertex i to i + 1 of an edge) the face lies on, from
+// the facet corner across it. Unknown on a seam, whose segments have facets on both sides.
+class FaceSide {
+ public:
+  explicit FaceSide(const CadFace& f) : f_(f) {
+    for (size_t t = 0; t + 2 < f.triangles.size(); t += 3)
+      for (size_t c = 0; c < 3; ++c) {
+        const auto [it, fresh] = opposite_.emplace(key(f.triangles[t + c], f.triangles[t + (c + 1) % 3]), f.triangles[t + (c + 2) % 3]);
+        if (!fresh) it->second = -1;
+      }
+  }
+  // Whether x lies on the face's side of segment i of edge e (on its line counts as on that side;
+  // so does anything beside a seam).
+  bool inward(size_t e, size_t i, const double* x) const {
+    const CadEdge& ed = f_.edges[e];
+    const auto it = opposite_.find(key(ed.vertices[i], ed.vertices[i + 1]));
+    if (it == opposite_.end() || it->second < 0) return true;
+    const double* a = &f_.xyz[3 * static_cast<size_t>(ed.vertices[i])];
+    const double* b = &f_.xyz[3 * static_cast<size_t>(ed.vertices[i + 1])];
+    const double* o = &f_.xyz[3 * static_cast<size_t>(it->second)];
+    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double in[3] = {o[0] - a[0], o[1] - a[1], o[2] - a[2]};
+    const double t = dd > 0 ? (in[0] * d[0] + in[1] * d[1] + in[2] * d[2]) / dd : 0.0;
+    for (int c = 0; c < 3; ++c) in[c] -= t * d[c];
+    return (x[0] - a[0]) * in[0] + (x[1] - a[1]) * in[1] + (x[2] - a[2]) * in[2] >= 0;
+  }
+
+ private:
+  static unsigned long long key(int32_t a, int32_t b) {
+    return static_cast<unsigned long long>(static_cast<uint32_t>(std::min(a, b))) << 32 | static_cast<uint32_t>(std::max(a, b));
+  }
+  const CadFace& f_;
+  std::unordered_map<unsigned long long, int32_t> opposite_;  // segment -> facet corner across, -1 both sides
+};
+
+// Per edge of the face, its box grown by `reach` (min x, y, z, max x, y, z): most edges are too far
+// from a point to look at.
+std::vector<std::array<double, 6>> edge_boxes(const CadFace& f, double reach) {
+  std::vector<std::array<double, 6>> box(f.edges.size(), {1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
+  for (size_t e = 0; e < f.edges.size(); ++e)
+    for (int32_t v : f.edges[e].vertices)
+      for (int c = 0; c < 3; ++c) {
+        box[e][c] = std::min(box[e][c], f.xyz[3 * static_cast<size_t>(v) + c] - reach);
+        box[e][c + 3] = std::max(box[e][c + 3], f.xyz[3 * static_cast<size_t>(v) + c] + reach);
+      }
+  return box;
+}
+
 // The width of the face at each sample of its edges, reported to `width_at`: the distance from a
 // sample to the nearest point of another edge of the face that lies across the face from it (on
 // another loop, or far round the same loop compared with the distance, and each on the face's side
@@ -234,41 +283,8 @@ void lower_by_width(const CadFace& f, double reach, double coincide, const std::
     }
     loop_length.push_back(offset);
   }
-  // Per boundary segment (chain vertex i to i + 1 of an edge), the facet corner across it: the
-  // face lies on that side. Unknown (the vertex itself) on a seam, whose segments have facets on
-  // both sides.
-  std::unordered_map<unsigned long long, int32_t> opposite;
-  auto key = [](int32_t a, int32_t b) {
-    return static_cast<unsigned long long>(static_cast<uint32_t>(std::min(a, b))) << 32 | static_cast<uint32_t>(std::max(a, b));
-  };
-  for (size_t t = 0; t + 2 < f.triangles.size(); t += 3)
-    for (size_t c = 0; c < 3; ++c) {
-      const auto [it, fresh] = opposite.emplace(key(f.triangles[t + c], f.triangles[t + (c + 1) % 3]), f.triangles[t + (c + 2) % 3]);
-      if (!fresh) it->second = -1;
-    }
-  // Whether x lies on the face's side of segment i of edge e (on its line counts as on that side).
-  auto inward = [&](size_t e, size_t i, const double* x) {
-    const CadEdge& ed = f.edges[e];
-    const auto it = opposite.find(key(ed.vertices[i], ed.vertices[i + 1]));
-    if (it == opposite.end() || it->second < 0) return true;
-    const double* a = &f.xyz[3 * static_cast<size_t>(ed.vertices[i])];
-    const double* b = &f.xyz[3 * static_cast<size_t>(ed.vertices[i + 1])];
-    const double* o = &f.xyz[3 * static_cast<size_t>(it->second)];
-    const double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    double in[3] = {o[0] - a[0], o[1] - a[1], o[2] - a[2]};
-    const double t = dd > 0 ? (in[0] * d[0] + in[1] * d[1] + in[2] * d[2]) / dd : 0.0;
-    for (int c = 0; c < 3; ++c) in[c] -= t * d[c];
-    return (x[0] - a[0]) * in[0] + (x[1] - a[1]) * in[1] + (x[2] - a[2]) * in[2] >= 0;
-  };
-  // Per edge, its box grown by `reach`: most edges are too far from a sample to look at.
-  std::vector<std::array<double, 6>> box(ne, {1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
-  for (size_t e = 0; e < ne; ++e)
-    for (int32_t v : f.edges[e].vertices)
-      for (int c = 0; c < 3; ++c) {
-        box[e][c] = std::min(box[e][c], f.xyz[3 * static_cast<size_t>(v) + c] - reach);
-        box[e][c + 3] = std::max(box[e][c + 3], f.xyz[3 * static_cast<size_t>(v) + c] + reach);
-      }
+  const FaceSide side(f);
+  const std::vector<std::array<double, 6>> box = edge_boxes(f, reach);
   // Of all ways round the loops between arc sp on edge a and arc sq on edge b, the shortest
   // (infinite between different loops).
   auto round_loop = [&](size_t a, double sp, size_t b, double sq) {
@@ -311,7 +327,7 @@ void lower_by_width(const CadFace& f, double reach, double coincide, const std::
           // Across the face, not across a hole or round the outside: each point on the face's
           // side of the other's segment.
           const double qx[3] = {q0[0] + t * d[0], q0[1] + t * d[1], q0[2] + t * d[2]};
-          if (!inward(a, ia, qx) || !inward(b, i, p.data())) continue;
+          if (!side.inward(a, ia, qx) || !side.inward(b, i, p.data())) continue;
           if (dist < kAcrossRatio * round_loop(a, samples[k], b, sq)) width = dist;
         }
       }
