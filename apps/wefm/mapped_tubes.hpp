@@ -21,7 +21,10 @@ constexpr size_t kFewestRound = 3;
 
 // The faces (CadModel::faces indices) to mesh as mapped strips: one loop made of a seam, one end (a
 // circle or a chain of arcs), the seam back and the other end; both ends with as many segments, at
-// least kFewestRound; the face given a size below h (narrow or curved). Each such face's seam, used
+// least kFewestRound; the face given a size below h (narrow or curved). Ends that differ by at most
+// a factor of two are made alike first: the end with fewer segments is re-discretised in
+// `edge_nodes` to the other's count (each of its edges evenly, shares by length), unless it is an
+// end of a tube mapped before (whose ends would then differ). Each such face's seam, used
 // by no other face, is re-discretised in `edge_nodes` at kTubeAspect times the ends' segment length,
 // at most h. Whether the strip can be mapped is the library's to say (four corners, opposite sides
 // with as many nodes): where it cannot, the face is meshed free on the same edge nodes.

@@ -32,6 +32,14 @@ MODELS = [("gmsh_Solid_56.step", True), ("occt_MODERN_Chair_1.brep", True), ("gm
 # nodeocc_kuka's tubes far thinner than h / 8 had three or fewer elements round their seam, and their
 # meshes lay on themselves twice (edges used four times) or folded away (edges used by no triangle).
 CONFORMING = {"nodeocc_kuka.stp"}
+# (model, size ratio): models that must conform at that size (exit 0, every edge as the B-rep says).
+# gmsh_wing_fuselage: the chords across the tip of its half-cone faces lay in the symmetry plane with
+# the plane faces' edges (split now: meshing/smoothing.cpp, spans_face). pyocc_11752 at 1/20: a thin
+# tube whose ends had 3 and 4 segments was meshed free and lay on itself (its ends are made alike now
+# and it is mapped: apps/wefm/mapped_tubes.cpp). pyocc_surf114: 222556 triangles at 1/40 where Gmsh
+# makes 4130 (needle facets set its faces' radius of curvature; two coincident edges made a face
+# narrow); checked against the triangles its area asks for at the size (check_count).
+CONFORMING_AT = [("gmsh_wing_fuselage.step", "0.025"), ("pyocc_11752.stp", "0.05"), ("pyocc_surf114.igs", "0.025")]
 # Models whose min lambda must reach issue 28's floor of 0.3: each had needles between a chain of short
 # boundary segments and a coarse one across a strip narrower than h, with no interior node between
 # (min 0.200 and 0.235), mended by splitting them (smoothing.cpp, split_pass).
@@ -70,10 +78,10 @@ def read_msh_triangles(path):
     return [t for tris in read_msh_faces(path)[0].values() for t in tris]
 
 
-def check(wefm, path, clean, tmp):
+def check(wefm, path, clean, tmp, ratio="0.025"):
     name = os.path.basename(path)
     msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
-    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-j", "2", "-q"],
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", ratio, "-o", msh, "--report", rep, "-j", "2", "-q"],
                        capture_output=True, text=True, timeout=600)
     assert p.returncode in (0, 5), f"{name}: exit {p.returncode} (a crash or a refusal): {p.stderr[-2000:]}"
     r = json.load(open(rep))
@@ -91,14 +99,33 @@ def check(wefm, path, clean, tmp):
     uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for t in read_msh_triangles(msh) for i in range(3))
     assert sum(1 for n in uses.values() if n == 1) == c["open_edges"], name
     assert sum(1 for n in uses.values() if n > 2) == c["non_manifold_edges"], name
-    if clean or name in CONFORMING:
+    if clean or name in CONFORMING or (name, ratio) in CONFORMING_AT:
         assert p.returncode == 0, f"{name}: exit {p.returncode}: {p.stderr[-2000:]}"
     if clean:
         assert r["lambda_mesh"] >= 0.85 and r["lambda_min"] > 0.01, (name, r["lambda_mesh"], r["lambda_min"])
     if name in SOUND:
         assert r["lambda_min"] >= 0.3, (name, r["lambda_min"])
+    if name == "pyocc_surf114.igs":
+        check_count(name, r, msh)
     print(f"{name}: exit {p.returncode}, {r['triangles']} triangles, lambda_mesh {r['lambda_mesh']:.3f}, min {r['lambda_min']:.3f}, "
           f"{len(failed)} failed faces, conformity {c['unexplained_open_edges']}/{c['unexplained_non_manifold_edges']} unexplained")
+
+
+def check_count(name, r, msh):
+    """No more than 2.5 times the triangles the surface's area asks for at the size (equilateral
+    triangles of side h): the faces of this model are wide and gently curved, nothing in them asks for
+    smaller elements."""
+    faces, points = read_msh_faces(msh)
+    area = 0.0
+    for tris in faces.values():
+        for a, b, c in tris:
+            pa, pb, pc = points[a], points[b], points[c]
+            u = [pb[k] - pa[k] for k in range(3)]
+            v = [pc[k] - pa[k] for k in range(3)]
+            x = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+            area += 0.5 * sum(t * t for t in x) ** 0.5
+    asked = area / (3 ** 0.5 / 4 * r["size"] ** 2)
+    assert r["triangles"] <= 2.5 * asked, f"{name}: {r['triangles']} triangles where the area asks for {asked:.0f}"
 
 
 def check_refused_size(wefm, folder, tmp):
@@ -133,13 +160,15 @@ def check_coincident_faces(wefm, path, tmp):
 
 def main():
     wefm, folder = sys.argv[1:3]
-    missing = [m for m, _ in MODELS if not os.path.exists(os.path.join(folder, m))]
+    missing = [m for m, _ in MODELS + CONFORMING_AT if not os.path.exists(os.path.join(folder, m))]
     if missing:
         print(f"the models {missing} are not in {folder}")
         return 1
     with tempfile.TemporaryDirectory() as tmp:
         for m, clean in MODELS:
             check(wefm, os.path.join(folder, m), clean, tmp)
+        for m, ratio in CONFORMING_AT:
+            check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
     return 0
