@@ -41,6 +41,18 @@ double quality(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index a,
   return lo_lambda(xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], xyz[static_cast<size_t>(c)]);
 }
 
+// The triangle across the edge from -> to: the one holding to -> from, among the triangles listed
+// around `at` (either end); -1 on the boundary. `apex` gets the position of its third node.
+Index across(const NodeTriangles& around, const std::vector<Tri3>& tris, Index at, Index from, Index to, int* apex) {
+  for (Index k = around.start[static_cast<size_t>(at)]; k < around.start[static_cast<size_t>(at) + 1]; ++k) {
+    const Index u = around.items[static_cast<size_t>(k)];
+    const Tri3& U = tris[static_cast<size_t>(u)];
+    for (int m = 0; m < 3; ++m)
+      if (U[static_cast<size_t>((m + 1) % 3)] == to && U[static_cast<size_t>((m + 2) % 3)] == from) return *apex = m, u;
+  }
+  return -1;
+}
+
 std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
                        double span_floor) {
   // The triangles around each node, as they were when the pass started (counting sort): the
@@ -49,8 +61,6 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
   // lists never mislead. A hash of all edges cost 20 % of meshing time on a 145k-triangle square.
   const size_t nv = uv.size();
   const NodeTriangles around = node_triangles(nv, tris);
-  const std::vector<Index>& start = around.start;
-  const std::vector<Index>& items = around.items;
   std::vector<char> touched(tris.size(), 0);
   // A triangle's quality is asked for once per edge; it cannot change before the triangle is
   // flipped (no node moves here), and a flipped triangle is not looked at again in this pass. Kept
@@ -70,15 +80,8 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
     for (int i = 0; i < 3 && !touched[static_cast<size_t>(t)]; ++i) {
       const Tri3 T = tris[static_cast<size_t>(t)];
       const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)], c = T[static_cast<size_t>((i + 2) % 3)];
-      Index s = -1;
       int j = -1;
-      for (Index k = start[static_cast<size_t>(b)]; k < start[static_cast<size_t>(b) + 1] && s < 0; ++k) {
-        const Index u = items[static_cast<size_t>(k)];
-        if (u == t) continue;
-        const Tri3& U = tris[static_cast<size_t>(u)];
-        for (int m = 0; m < 3; ++m)
-          if (U[static_cast<size_t>((m + 1) % 3)] == c && U[static_cast<size_t>((m + 2) % 3)] == b) s = u, j = m;
-      }
+      const Index s = across(around, tris, b, b, c, &j);
       // Each edge once, from its later triangle; an edge whose neighbour was flipped waits.
       if (s < 0 || s > t || touched[static_cast<size_t>(s)]) continue;
       const Tri3 S = tris[static_cast<size_t>(s)];
@@ -267,14 +270,10 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
       const Index ai = T[static_cast<size_t>(i)], bi = T[static_cast<size_t>((i + 1) % 3)], ci = T[static_cast<size_t>((i + 2) % 3)];
       const double len = (xyz[static_cast<size_t>(bi)] - xyz[static_cast<size_t>(ci)]).norm();
       if (len <= longest) continue;
-      for (Index k = around.start[static_cast<size_t>(bi)]; k < around.start[static_cast<size_t>(bi) + 1]; ++k) {
-        const Index u = around.items[static_cast<size_t>(k)];
-        if (u == t || touched[static_cast<size_t>(u)]) continue;
-        const Tri3& U = tris[static_cast<size_t>(u)];
-        for (int m = 0; m < 3; ++m)
-          if (U[static_cast<size_t>((m + 1) % 3)] == ci && U[static_cast<size_t>((m + 2) % 3)] == bi)
-            s = u, a = ai, b = bi, c = ci, d = U[static_cast<size_t>(m)], longest = len;
-      }
+      int m = -1;
+      const Index u = across(around, tris, bi, bi, ci, &m);
+      if (u < 0 || touched[static_cast<size_t>(u)]) continue;
+      s = u, a = ai, b = bi, c = ci, d = tris[static_cast<size_t>(u)][static_cast<size_t>(m)], longest = len;
     }
     if (s < 0) continue;
     const Tri3 S = tris[static_cast<size_t>(s)];
@@ -351,8 +350,8 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
 
 // Splits edges between two boundary nodes that span the face (spans_face) at their UV middle,
 // lifted, the new node then moved for the worst quality of its four triangles. The mesher splits
-// them before improvement and flips never make one; this mends what the moves left. Returns the number of edges split; an edge whose triangle another split changed
-// waits for the next call.
+// them before improvement and flips never make one; this mends what the moves left. Returns the
+// number of edges split; an edge whose triangle another split changed waits for the next call.
 std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
                             double span_floor) {
   const NodeTriangles around = node_triangles(uv.size(), tris);
@@ -365,15 +364,10 @@ std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::ve
       const Tri3 T = tris[static_cast<size_t>(t)];
       const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)], c = T[static_cast<size_t>((i + 2) % 3)];
       if (a >= fixed || b >= fixed) continue;
-      // The triangle across a -> b: around a, the one holding b -> a.
-      Index s = -1, d = -1;
-      for (Index k = around.start[static_cast<size_t>(a)]; k < around.start[static_cast<size_t>(a) + 1] && s < 0; ++k) {
-        const Index u = around.items[static_cast<size_t>(k)];
-        const Tri3& U = tris[static_cast<size_t>(u)];
-        for (int m = 0; m < 3; ++m)
-          if (U[static_cast<size_t>(m)] == b && U[static_cast<size_t>((m + 1) % 3)] == a) s = u, d = U[static_cast<size_t>((m + 2) % 3)];
-      }
+      int m = -1;
+      const Index s = across(around, tris, a, a, b, &m);
       if (s < 0 || touched[static_cast<size_t>(s)]) continue;  // a boundary segment, or changed already
+      const Index d = tris[static_cast<size_t>(s)][static_cast<size_t>(m)];
       const P2 middle = 0.5 * (uv[static_cast<size_t>(a)] + uv[static_cast<size_t>(b)]);
       Vec3 x;
       if (!spans_face(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span_floor, &x)) continue;
