@@ -1,7 +1,10 @@
 // Robust predicates and the triangulation on near-degenerate input: signs checked against exact
 // integer arithmetic (coordinates are integers, so __int128 evaluates the determinants exactly).
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
+#include <set>
 
 #include "mesh_faces.hpp"
 #include "wefm/core/meshing/predicates.hpp"
@@ -98,6 +101,47 @@ TEST_CASE("the triangulation stays valid on collinear and nearly collinear bound
   }
   CHECK(area == doctest::Approx(0.7 * 1e-3).epsilon(1e-6));
   CHECK(tr.triangles().size() == pts.size() - 2);
+}
+
+TEST_CASE("a long boundary loop triangulates constrained Delaunay, the same wherever the loop starts") {
+  // 3000 nodes on a wavy ellipse, jittered so that no four are cocircular: the constrained Delaunay
+  // triangulation is then unique, and the nodes' insertion order (randomised inside) cannot show.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-1e-4, 1e-4);
+  const int n = 3000;
+  std::vector<P2> pts;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * kPi * k / n, r = 1 + 0.05 * std::sin(9 * a);
+    pts.emplace_back(3 * r * std::cos(a) + jitter(rng), r * std::sin(a) + jitter(rng));
+  }
+  auto triangulate = [&](int start) {
+    std::vector<P2> rotated;
+    for (int k = 0; k < n; ++k) rotated.push_back(pts[static_cast<size_t>((k + start) % n)]);
+    std::vector<std::array<Index, 2>> segs;
+    for (Index k = 0; k < n; ++k) segs.push_back({k, (k + 1) % n});
+    meshing::Triangulation tr(rotated, segs);
+    CHECK(tr.valid());
+    std::set<std::array<Index, 3>> out;
+    for (auto t : tr.triangles()) {
+      for (Index& v : t) v = (v + start) % n;  // back to the nodes' own numbers
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      out.insert(t);
+    }
+    return out;
+  };
+  const auto tris = triangulate(0);
+  CHECK(tris.size() == static_cast<size_t>(n - 2));
+  CHECK(tris == triangulate(1234));
+  // Constrained Delaunay: across every edge inside the loop, the opposite node is outside the circle.
+  std::map<std::pair<Index, Index>, Index> apex;
+  for (const auto& t : tris)
+    for (int i = 0; i < 3; ++i) apex[{t[static_cast<size_t>(i)], t[static_cast<size_t>((i + 1) % 3)]}] = t[static_cast<size_t>((i + 2) % 3)];
+  int violations = 0;
+  for (const auto& [e, c] : apex) {
+    const auto other = apex.find({e.second, e.first});
+    if (other != apex.end() && meshing::incircle(pts[static_cast<size_t>(e.first)], pts[static_cast<size_t>(e.second)], pts[static_cast<size_t>(c)], pts[static_cast<size_t>(other->second)]) > 0) ++violations;
+  }
+  CHECK(violations == 0);
 }
 
 TEST_CASE("refinement keeps the triangulation constrained Delaunay and meets the angle bound") {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <deque>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <string>
 
@@ -17,6 +18,53 @@ constexpr Index kSuper = 3;
 constexpr double kSameNode2 = 1e-12;
 inline int nx(int i) { return (i + 1) % 3; }
 inline int pv(int i) { return (i + 2) % 3; }
+
+// Position of cell (x, y) along the Hilbert curve over a 2^16 x 2^16 grid.
+std::uint64_t hilbert_index(std::uint32_t x, std::uint32_t y) {
+  std::uint64_t d = 0;
+  for (std::uint32_t s = 1u << 15; s > 0; s >>= 1) {
+    const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+    d += static_cast<std::uint64_t>(s) * s * ((3 * rx) ^ ry);
+    if (ry == 0) {  // rotate the quadrant so the curve stays continuous
+      if (rx == 1) x = 65535 - x, y = 65535 - y;  // only the lower bits matter from here
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+// A biased randomised insertion order (Amenta, Choi and Rote): the nodes shuffled with a fixed
+// seed, then cut into rounds that double in size, each round sorted along a Hilbert curve. Random
+// order keeps the expected cavity small whatever the boundary's shape; the sorted rounds keep each
+// point location walk short. The seed is fixed, so a domain always gets the same triangulation.
+std::vector<size_t> insertion_order(const std::vector<P2>& points) {
+  const size_t n = points.size();
+  std::vector<size_t> order(n);
+  for (size_t k = 0; k < n; ++k) order[k] = k;
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  auto next = [&state] {  // splitmix64
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  for (size_t k = n; k > 1; --k) std::swap(order[k - 1], order[static_cast<size_t>(next() % k)]);
+  P2 lo(1e300, 1e300), hi(-1e300, -1e300);
+  for (const P2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double span = std::max((hi - lo).maxCoeff(), 1e-300);
+  std::vector<std::uint64_t> key(n);
+  for (size_t k = 0; k < n; ++k) {
+    const P2 q = (points[k] - lo) / span * 65535.0;
+    key[k] = hilbert_index(static_cast<std::uint32_t>(std::clamp(q.x(), 0.0, 65535.0)), static_cast<std::uint32_t>(std::clamp(q.y(), 0.0, 65535.0)));
+  }
+  for (size_t end = n; end > 0;) {
+    const size_t begin = end / 2 < 8 ? 0 : end / 2;
+    std::sort(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end),
+              [&key](size_t a, size_t b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
+    end = begin;
+  }
+  return order;
+}
 }  // namespace
 
 Index Triangulation::new_tri(Index a, Index b, Index c) {
@@ -60,8 +108,13 @@ Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<st
   }
   vtri_.assign(3, 0);
   new_tri(0, 1, 2);
-  for (size_t k = 0; k < points.size(); ++k)
-    if (insert(points[k], last_) < 0)
+  // Every boundary node gets its number first; they are inserted in a randomised order
+  // (insertion_order): in the loops' own order, each node along a gently curved boundary lies in
+  // the circumcircle of most triangles made so far, and the cavities grow with the node count.
+  pts_.insert(pts_.end(), points.begin(), points.end());
+  vtri_.resize(pts_.size(), -1);
+  for (const size_t k : insertion_order(points))
+    if (place(static_cast<Index>(k) + kSuper, last_, nullptr, nullptr) < 0)
       fail(Errc::invalid_state, "boundary node " + std::to_string(k) + " coincides with another node: the domain boundary touches itself");
   std::set<std::pair<Index, Index>> seen;
   for (const auto& s : segments) {
@@ -128,6 +181,16 @@ Index Triangulation::locate(const P2& p, Index t, bool stop_at_segments, std::ar
 }
 
 Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encroached, const std::function<bool(Index)>* near_ok) {
+  const Index v = static_cast<Index>(pts_.size());
+  pts_.push_back(p);
+  vtri_.push_back(-1);
+  const Index made = place(v, hint, encroached, near_ok);
+  if (made < 0) pts_.pop_back(), vtri_.pop_back();
+  return made;
+}
+
+Index Triangulation::place(Index v, Index hint, std::array<Index, 2>* encroached, const std::function<bool(Index)>* near_ok) {
+  const P2 p = pts_[static_cast<size_t>(v)];
   std::array<Index, 2> crossed{};
   const Index t0 = locate(p, hint, encroached != nullptr, &crossed);
   if (t0 == -2) {
@@ -191,9 +254,6 @@ Index Triangulation::insert(const P2& p, Index hint, std::array<Index, 2>* encro
     tris_[t].live = false;
     free_.push_back(t);
   }
-  const Index v = static_cast<Index>(pts_.size());
-  pts_.push_back(p);
-  vtri_.push_back(-1);
   std::vector<Index>& made = made_;
   made.resize(rim.size());
   for (size_t k = 0; k < rim.size(); ++k) {

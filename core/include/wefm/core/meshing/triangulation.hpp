@@ -70,6 +70,8 @@ class Triangulation {
     std::uint32_t gen = 0;
   };
   Index locate(const P2& p, Index hint, bool stop_at_segments, std::array<Index, 2>* crossed) const;
+  // insert for internal node v, whose point is already in pts_: its cavity and the triangles on its rim.
+  Index place(Index v, Index hint, std::array<Index, 2>* encroached, const std::function<bool(Index)>* near_ok);
   void flip(Index t, int i);
   void link(Index t, int i, Index s);
   Index edge_triangle(Index a, Index b, int* i) const;  // triangle with directed edge a->b
