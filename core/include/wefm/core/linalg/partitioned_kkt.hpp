@@ -9,15 +9,10 @@
 #include <unordered_map>
 #include <vector>
 
+#include "wefm/core/linalg/linear_row.hpp"
 #include "wefm/core/linalg/sparse_cholesky.hpp"
 
 namespace wefm {
-
-// sum_j coef_j z_{use_j} = rhs
-struct LinearRow {
-  std::vector<std::pair<Index, Complex>> terms;
-  Complex rhs{0.0, 0.0};
-};
 
 class PartitionedKKT {
  public:

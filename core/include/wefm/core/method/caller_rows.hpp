@@ -3,7 +3,7 @@
 // (positions divided by the mean edge length) and each row scaled to a largest coefficient of 1.
 #include <vector>
 
-#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/linalg/linear_row.hpp"
 
 namespace wefm {
 

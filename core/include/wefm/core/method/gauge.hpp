@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "wefm/core/method/coefficients.hpp"
-#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/linalg/linear_row.hpp"
 
 namespace wefm {
 

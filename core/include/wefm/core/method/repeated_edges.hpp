@@ -2,7 +2,7 @@
 // Constraint rows for the modes of a repeated edge (METHOD §6, plus rotational periodicity).
 #include <vector>
 
-#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/linalg/linear_row.hpp"
 #include "wefm/core/mesh/topology.hpp"
 
 namespace wefm {

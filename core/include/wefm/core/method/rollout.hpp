@@ -6,7 +6,7 @@
 
 #include "wefm/core/method/coefficients.hpp"
 #include "wefm/core/method/options.hpp"
-#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/linalg/linear_row.hpp"
 
 namespace wefm {
 

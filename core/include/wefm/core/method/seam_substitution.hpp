@@ -6,7 +6,7 @@
 // use each time the matrix is refactorised.
 #include <vector>
 
-#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/linalg/linear_row.hpp"
 #include "wefm/core/mesh/topology.hpp"
 
 namespace wefm {

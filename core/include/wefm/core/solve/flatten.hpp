@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "wefm/core/method/options.hpp"
-#include "wefm/core/linalg/partitioned_kkt.hpp"
+#include "wefm/core/linalg/linear_row.hpp"
+#include "wefm/core/linalg/sparse_cholesky.hpp"
 #include "wefm/core/method/quality.hpp"
 
 namespace wefm {
