@@ -37,6 +37,9 @@ namespace wefm::capi {
 
 void set_thread_error(const std::string& message);
 
+// A core error's message, with its remedy (wefm::Remedy) named in this API's calls and fields.
+std::string api_message(const wefm::Error& e);
+
 // Runs `body`; maps exceptions to statuses and stores the message on `err` (or thread-locally).
 template <class F>
 wefm_status guarded(std::string* err, F&& body) noexcept {
@@ -44,8 +47,9 @@ wefm_status guarded(std::string* err, F&& body) noexcept {
     body();
     return WEFM_OK;
   } catch (const wefm::Error& e) {
-    if (err) *err = e.what();
-    set_thread_error(e.what());
+    const std::string m = api_message(e);
+    if (err) *err = m;
+    set_thread_error(m);
     return static_cast<wefm_status>(static_cast<int>(e.code()));
   } catch (const std::bad_alloc&) {
     const char* m = "out of memory";

@@ -15,6 +15,18 @@ void set_thread_error(const std::string& message) {
   }
 }
 
+std::string api_message(const wefm::Error& e) {
+  const char* remedy = "";
+  switch (e.remedy()) {
+    case wefm::Remedy::none: break;
+    case wefm::Remedy::set_mesh: remedy = " (wefm_face_set_mesh)"; break;
+    case wefm::Remedy::solve_first: remedy = " (wefm_face_solve)"; break;
+    case wefm::Remedy::add_seams: remedy = " (wefm_face_add_seams)"; break;
+    case wefm::Remedy::seams_or_cut: remedy = " (seams: wefm_face_add_seams; the automatic cut: wefm_options.auto_cut)"; break;
+  }
+  return std::string(e.what()) + remedy;
+}
+
 wefm_status refuse_while_solving(wefm_face* face, const char* function) noexcept {
   try {
     face->last_error = std::string(function) +

@@ -257,7 +257,8 @@ AutoCut compute_auto_cut(const TriMesh& m, SlitRule rule) {
     const std::int64_t genus = (2 - chi) / 2;
     fail(Errc::invalid_topology, "automatic cut: the face is a closed surface of genus " + std::to_string(genus) + " (Euler characteristic " +
                                      std::to_string(chi) + ", " + std::to_string(genus) + (genus == 1 ? " handle" : " handles") +
-                                     "); auto_cut cuts only genus 0. Give seams (wefm_face_add_seams) that cut every handle open");
+                                     "); the automatic cut cuts only genus 0. Give seams that cut every handle open",
+         Remedy::add_seams);
   }
   const Graph g = edge_graph(m, he);
   std::vector<Index> path;

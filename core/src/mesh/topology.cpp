@@ -410,7 +410,8 @@ Topology build_topology(const TriMesh& m, const TopologySpec& spec, const HalfEd
   assign_uses(m, cut, tp);
   const BoundaryCycles bc(m, tp, cut);
   if (bc.cycles.empty())
-    fail(Errc::invalid_topology, "closed surface with no boundary and no cut: give seams (wefm_face_add_seams: facet edges to cut along) or loops with a repeated edge, or set wefm_options.auto_cut (genus 0 only)");
+    fail(Errc::invalid_topology, "closed surface with no boundary and no cut: give seams (facet edges to cut along) or loops with a repeated edge, or turn on the automatic cut (genus 0 only)",
+         Remedy::seams_or_cut);
   if (given) {
     tp.edges = spec.edges;
     tp.loops = spec.loops;

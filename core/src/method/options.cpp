@@ -23,9 +23,9 @@ void validate_options(const Options& o) {
   if (!(o.memory_limit_mb >= 0)) bad("memory_limit_mb must be >= 0");
   if (!(o.min_beta > 0 && o.min_beta < 1)) bad("min_beta must be in (0, 1)");
   const int m = static_cast<int>(o.method);
-  if (m < 0 || m > 1) bad("method is not a wefm_method");
+  if (m < 0 || m > 1) bad("method " + std::to_string(m) + " is not a method (0 global, 1 roll-out)");
   const int e = static_cast<int>(o.default_edge_mode);
-  if (e < 0 || e > 4) bad("default_edge_mode is not a wefm_edge_mode");
+  if (e < 0 || e > 4) bad("default_edge_mode " + std::to_string(e) + " is not an edge mode (0 auto, 1 free, 2 periodic, 3 scar, 4 rotational)");
 }
 
 }  // namespace wefm

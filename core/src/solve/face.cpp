@@ -10,7 +10,7 @@
 namespace wefm {
 
 void Face::require_mesh(const char* what) const {
-  if (!has_mesh_) fail(Errc::invalid_state, std::string(what) + " needs a mesh: call wefm_face_set_mesh first");
+  if (!has_mesh_) fail(Errc::invalid_state, std::string(what) + " needs a mesh: set the face's mesh first", Remedy::set_mesh);
 }
 
 void Face::set_mesh(TriMesh mesh) {
@@ -89,7 +89,7 @@ void Face::add_seams(const std::vector<std::pair<Index, Index>>& seams) {
 void Face::set_edge_mode(Index edge, EdgeMode mode) {
   require_mesh("setting an edge mode");
   const int m = static_cast<int>(mode);
-  if (m < 0 || m > 4) fail(Errc::invalid_argument, "edge mode " + std::to_string(m) + " is not a wefm_edge_mode");
+  if (m < 0 || m > 4) fail(Errc::invalid_argument, "edge mode " + std::to_string(m) + " is not an edge mode (0 auto, 1 free, 2 periodic, 3 scar, 4 rotational)");
   const Index ne = static_cast<Index>(topology().edges.size());
   if (edge < 0 || edge >= ne) fail(Errc::out_of_range, "edge " + std::to_string(edge) + " does not exist (" + std::to_string(ne) + " edges)");
   spec_.edge_modes[edge] = mode;
@@ -210,7 +210,7 @@ void Face::solve(const ProgressFn& progress, const std::atomic<bool>* cancel) {
 }
 
 const FlattenResult& Face::result() const {
-  if (!result_) fail(Errc::invalid_state, "no result: call wefm_face_solve first (or the last change cleared it)");
+  if (!result_) fail(Errc::invalid_state, "no result: solve the face first (or the last change cleared it)", Remedy::solve_first);
   return *result_;
 }
 

@@ -25,16 +25,29 @@ enum class Errc : int {
   internal = 99,
 };
 
+// What the caller can do about an error, where the message alone cannot name it: the core does not
+// know the calls and fields of the API it is used through, so each API (the C API: capi/src/
+// handles.hpp) names them in its own terms after the message.
+enum class Remedy : int {
+  none,
+  set_mesh,        // give the face a mesh first
+  solve_first,     // solve the face first
+  add_seams,       // give seams that cut the surface open
+  seams_or_cut,    // give seams, or turn on the automatic cut
+};
+
 class Error : public std::runtime_error {
  public:
-  Error(Errc code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  Error(Errc code, const std::string& message, Remedy remedy = Remedy::none) : std::runtime_error(message), code_(code), remedy_(remedy) {}
   Errc code() const noexcept { return code_; }
+  Remedy remedy() const noexcept { return remedy_; }
 
  private:
   Errc code_;
+  Remedy remedy_;
 };
 
-[[noreturn]] inline void fail(Errc code, const std::string& message) { throw Error(code, message); }
+[[noreturn]] inline void fail(Errc code, const std::string& message, Remedy remedy = Remedy::none) { throw Error(code, message, remedy); }
 
 // A number for a message, to 3 significant digits (1.7e+308, 0.125).
 inline std::string message_number(double x) {
