@@ -125,10 +125,16 @@ Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<st
     }
     recover(s[0] + kSuper, s[1] + kSuper);
   }
-  // Lawson flips restore the constrained Delaunay property after the recovery flips.
+  // Lawson flips restore the constrained Delaunay property after the recovery flips. Four nodes
+  // on one circle (the rectangles of a strip whose two sides have nodes at the same stations) have
+  // two Delaunay diagonals; the one through the quad's lowest-numbered node is taken, so the
+  // triangulation depends on the nodes and their numbering (along the loops) alone, not on the
+  // order they went in. The tie flips are capped: among many nodes on one circle they could
+  // otherwise chase each other.
   std::deque<std::pair<Index, int>> q;
   for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
     for (int i = 0; i < 3; ++i) q.emplace_back(t, i);
+  std::int64_t tie_flips = 4 * static_cast<std::int64_t>(tris_.size());
   while (!q.empty()) {
     auto [t, i] = q.front();
     q.pop_front();
@@ -137,17 +143,52 @@ Triangulation::Triangulation(const std::vector<P2>& points, const std::vector<st
     const Index s = tt.n[i];
     int j = 0;
     while (tris_[s].n[j] != t) ++j;
-    const Index d = tris_[s].v[j];
-    if (incircle(pts_[tt.v[0]], pts_[tt.v[1]], pts_[tt.v[2]], pts_[d]) > 0) {
+    const Index a = tt.v[i], b = tt.v[nx(i)], c = tt.v[pv(i)], d = tris_[s].v[j];
+    const double in = incircle(pts_[tt.v[0]], pts_[tt.v[1]], pts_[tt.v[2]], pts_[d]);
+    const bool tie = in == 0 && std::min({a, b, c, d}) >= kSuper && std::min(a, d) < std::min(b, c) && tie_flips > 0;
+    if (in > 0 || tie) {
+      if (tie) --tie_flips;
       flip(t, i);
       for (int k = 0; k < 3; ++k) q.emplace_back(t, k), q.emplace_back(s, k);
     }
   }
   mark_inside();
+  renumber_slots();
   // Closed loops keep the super-triangle outside; anything else would hand out its nodes as mesh nodes.
   for (const T& tt : tris_)
     if (tt.live && tt.inside && (tt.v[0] < kSuper || tt.v[1] < kSuper || tt.v[2] < kSuper))
       fail(Errc::invalid_state, "the boundary segments do not enclose the domain: the domain boundary is not closed");
+}
+
+void Triangulation::renumber_slots() {
+  // Slots by their corners' numbers, which run along the loops: refinement takes equal candidates
+  // in slot order, and an order along the boundary (what inserting the nodes in the loops' order
+  // gave) makes its fronts advance along a strip instead of meeting from random places, which
+  // measured 7 % more triangles on a model with many long thin strips.
+  std::vector<Index> live;
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
+    if (tris_[t].live) live.push_back(t);
+  auto sorted_corners = [&](Index t) {
+    std::array<Index, 3> v = tris_[t].v;
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  std::sort(live.begin(), live.end(), [&](Index x, Index y) { return sorted_corners(x) < sorted_corners(y); });
+  std::vector<Index> slot_of(tris_.size(), -1);
+  for (size_t k = 0; k < live.size(); ++k) slot_of[static_cast<size_t>(live[k])] = static_cast<Index>(k);
+  std::vector<T> out;
+  out.reserve(live.size());
+  for (Index t : live) {
+    T tt = tris_[t];
+    for (Index& n : tt.n)
+      if (n >= 0) n = slot_of[static_cast<size_t>(n)];
+    out.push_back(tt);
+  }
+  tris_ = std::move(out);
+  free_.clear();
+  for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
+    for (Index v : tris_[t].v) vtri_[v] = t;
+  last_ = tris_.empty() ? 0 : static_cast<Index>(tris_.size()) - 1;
 }
 
 Index Triangulation::locate(const P2& p, Index t, bool stop_at_segments, std::array<Index, 2>* crossed) const {

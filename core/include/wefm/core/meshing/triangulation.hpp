@@ -78,6 +78,7 @@ class Triangulation {
   std::vector<Index> star(Index a) const;               // live triangles around internal node a
   void recover(Index a, Index b);
   void mark_inside();
+  void renumber_slots();  // live triangles only, in the order of their sorted corners
   Index new_tri(Index a, Index b, Index c);
 
   std::vector<P2> pts_;  // the super-triangle nodes first (0..2), then the caller's nodes
