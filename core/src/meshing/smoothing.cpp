@@ -53,6 +53,21 @@ Index across(const NodeTriangles& around, const std::vector<Tri3>& tris, Index a
   return -1;
 }
 
+// Whether flipping the edge b-c of (a, b, c) and (d, c, b) to (a, b, d) and (d, c, a) would make a
+// fold: a new triangle on the same three points as the other or as a neighbour, once each way. At
+// the end of a seam the two copies of a seam node are one point; a flip there can leave the end
+// node two triangles that reach the same node on both sides of the seam, which welding turns into
+// one sliver both ways, and the end node is lost from the model mesh.
+bool makes_fold(const NodeTriangles& around, const std::vector<Tri3>& tris, const std::vector<Vec3>& xyz, Index a, Index b, Index c, Index d) {
+  auto same_point = [&](Index p, Index q) { return xyz[static_cast<size_t>(p)] == xyz[static_cast<size_t>(q)]; };
+  auto apex_is = [&](Index from, Index to, Index opposite) {  // the neighbour across from -> to has its apex at `opposite`
+    int m = -1;
+    const Index u = across(around, tris, from, from, to, &m);
+    return u >= 0 && same_point(tris[static_cast<size_t>(u)][static_cast<size_t>(m)], opposite);
+  };
+  return same_point(b, c) || apex_is(a, b, d) || apex_is(b, d, a) || apex_is(d, c, a) || apex_is(c, a, d);
+}
+
 std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
                        double span_floor) {
   // The triangles around each node, as they were when the pass started (counting sort): the
@@ -91,7 +106,7 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
       const double q1 = quality(uv, xyz, a, b, d);
       if (!(q1 > old_q + 1e-9)) continue;
       const double new_q = std::min(q1, quality(uv, xyz, d, c, a));
-      if (new_q > old_q + 1e-9 && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span_floor))) {
+      if (new_q > old_q + 1e-9 && !makes_fold(around, tris, xyz, a, b, c, d) && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span_floor))) {
         tris[static_cast<size_t>(t)] = {a, b, d};
         tris[static_cast<size_t>(s)] = {d, c, a};
         touched[static_cast<size_t>(s)] = touched[static_cast<size_t>(t)] = 1;
