@@ -14,6 +14,7 @@
 #include "fuzz_faces.hpp"
 
 using wefm_fuzz::check;
+using wefm_fuzz::fetch;
 using wefm_fuzz::Input;
 using wefm_fuzz::make_mesh;
 using wefm_fuzz::Mesh;
@@ -95,24 +96,6 @@ void set_options(wefm_face* f, Input& in) {
     o.max_rollout_sweeps = 200;
     check(wefm_face_set_options(f, &o), f);
   }
-}
-
-// Size query then fill; checks the buffer protocol of wefm.h.
-template <class T, class Fn>
-void query(wefm_face* f, Fn fn) {
-  int64_t count = -1;
-  const wefm_status s = fn(static_cast<T*>(nullptr), int64_t(0), &count);
-  check(s, f);
-  if (s != WEFM_OK) return;
-  if (count < 0 || count > (int64_t(1) << 26)) violated("size query", "count out of range");
-  std::vector<T> buf(static_cast<size_t>(count) + 1);
-  if (count > 0) {
-    int64_t c2 = -1;
-    if (fn(buf.data(), count - 1, &c2) != WEFM_ERROR_BUFFER_TOO_SMALL || c2 != count) violated("size query", "short buffer accepted");
-  }
-  int64_t c3 = -1;
-  check(fn(buf.data(), count, &c3), f);
-  if (c3 != count) violated("size query", "count changed");
 }
 
 struct Cancel {
@@ -199,18 +182,18 @@ void queries(wefm_face* f, Input& in) {
   int32_t l = 0;
   check(wefm_face_outer_loop(f, &l), f);
   const int32_t e = in.index(0, 6), lp = in.index(0, 4), v = in.index(0, 40);
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_edge(f, e, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_edge(f, e, b, c, k); });
   int32_t rep = 0;
   check(wefm_face_edge_is_repeated(f, e, &rep), f);
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_loop(f, lp, b, c, k); });
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_loop_uses(f, lp, b, c, k); });
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_use_vertices(f, b, c, k); });
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_triangle_uses(f, b, c, k); });
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_vertex_uses(f, v, b, c, k); });
-  query<double>(f, [&](double* b, int64_t c, int64_t* k) { return wefm_face_get_uv(f, b, c, k); });
-  query<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_edge_modes(f, b, c, k); });
-  query<double>(f, [&](double* b, int64_t c, int64_t* k) { return wefm_face_get_edge_scores(f, e, b, c, k); });
-  query<double>(f, [&](double* b, int64_t c, int64_t* k) { return wefm_face_get_step_history(f, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_loop(f, lp, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_loop_uses(f, lp, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_use_vertices(f, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_triangle_uses(f, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_vertex_uses(f, v, b, c, k); });
+  fetch<double>(f, [&](double* b, int64_t c, int64_t* k) { return wefm_face_get_uv(f, b, c, k); });
+  fetch<int32_t>(f, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_face_get_edge_modes(f, b, c, k); });
+  fetch<double>(f, [&](double* b, int64_t c, int64_t* k) { return wefm_face_get_edge_scores(f, e, b, c, k); });
+  fetch<double>(f, [&](double* b, int64_t c, int64_t* k) { return wefm_face_get_step_history(f, b, c, k); });
   wefm_report r;
   wefm_report_init(&r);
   if (in.u8() % 8 == 0) r.struct_size = sizeof(size_t) + in.u8() % 64;  // an older, smaller struct

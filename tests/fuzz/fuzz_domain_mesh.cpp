@@ -18,6 +18,7 @@
 #include "fuzz_files.hpp"
 
 using wefm_fuzz::check;
+using wefm_fuzz::fetch;
 using wefm_fuzz::Input;
 using wefm_fuzz::violated;
 
@@ -113,26 +114,12 @@ wefm_mesh_options mesh_options(Input& in, double span) {
   return o;
 }
 
-template <class T, class Get>
-std::vector<T> fetch(Get get) {
-  int64_t n = -1;
-  if (get(static_cast<T*>(nullptr), int64_t(0), &n) != WEFM_OK || n < 0) violated("domain mesh size query", "failed");
-  std::vector<T> v(static_cast<size_t>(n) + 1);
-  if (n > 0) {
-    int64_t c = -1;
-    if (get(v.data(), n - 1, &c) != WEFM_ERROR_BUFFER_TOO_SMALL || c != n) violated("domain mesh size query", "short buffer accepted");
-  }
-  if (get(v.data(), n, &n) != WEFM_OK) violated("domain mesh get", "failed");
-  v.resize(static_cast<size_t>(n));
-  return v;
-}
-
 void inspect(wefm_domain_mesh* dm, Input& in) {
   if (wefm_domain_mesh_retain(dm) != WEFM_OK) violated("wefm_domain_mesh_retain", wefm_last_error());
   wefm_domain_mesh_release(dm);
-  const auto uv = fetch<double>([&](double* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_uv(dm, b, c, k); });
-  const auto xyz = fetch<double>([&](double* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_xyz(dm, b, c, k); });
-  const auto el = fetch<int32_t>([&](int32_t* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_elements(dm, b, c, k); });
+  const auto uv = fetch<double>(nullptr, [&](double* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_uv(dm, b, c, k); }, true);
+  const auto xyz = fetch<double>(nullptr, [&](double* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_xyz(dm, b, c, k); }, true);
+  const auto el = fetch<int32_t>(nullptr, [&](int32_t* b, int64_t c, int64_t* k) { return wefm_domain_mesh_get_elements(dm, b, c, k); }, true);
   const int64_t nodes = static_cast<int64_t>(uv.size() / 2);
   if (static_cast<int64_t>(xyz.size()) != 3 * nodes) violated("domain mesh", "uv and xyz counts differ");
   for (double x : uv)

@@ -25,6 +25,32 @@ inline void check(wefm_status s, wefm_face* f) {
   if (s == WEFM_ERROR_INTERNAL) violated("WEFM_ERROR_INTERNAL", f ? wefm_face_last_error(f) : wefm_last_error());
 }
 
+// One getter through wefm.h's buffer protocol: the size query, a buffer one short refused with
+// WEFM_ERROR_BUFFER_TOO_SMALL and the count, then the fill with the same count. A size query may
+// fail with a documented status (nothing is returned) unless `required`; the fill may not.
+template <class T, class Get>
+std::vector<T> fetch(wefm_face* f, Get get, bool required = false) {
+  int64_t count = -1;
+  const wefm_status s = get(static_cast<T*>(nullptr), int64_t(0), &count);
+  check(s, f);
+  if (s != WEFM_OK) {
+    if (required) violated("size query", "failed");
+    return {};
+  }
+  if (count < 0 || count > (int64_t(1) << 26)) violated("size query", "count out of range");
+  std::vector<T> buf(static_cast<size_t>(count) + 1);
+  if (count > 0) {
+    int64_t shorter = -1;
+    if (get(buf.data(), count - 1, &shorter) != WEFM_ERROR_BUFFER_TOO_SMALL || shorter != count) violated("size query", "short buffer accepted");
+  }
+  int64_t filled = -1;
+  const wefm_status fs = get(buf.data(), count, &filled);
+  check(fs, f);
+  if (fs != WEFM_OK || filled != count) violated("size query", "the fill failed or its count changed");
+  buf.resize(static_cast<size_t>(count));
+  return buf;
+}
+
 // A (w x h)-cell grid on a bent sheet, then a few mutations of coordinates and indices.
 inline Mesh make_mesh(Input& in) {
   Mesh m;
