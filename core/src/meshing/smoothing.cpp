@@ -31,6 +31,13 @@ using Tri3 = std::array<Index, 3>;
 // min lambda for 0.0005 more.
 constexpr int kOptimisePasses = 3;
 constexpr double kOptimiseFloor = 0.8;
+// A node's compass search (48 lifts and star counts) runs when its star's worst element is below
+// kCompassBelow; after a move to one of its two targets was kept, only below kCompassAfterMove:
+// that move already shaped the star, and there the search mostly polished stars far above the
+// quality floor, at the cost of most of smoothing's time (docs/PERFORMANCE.md, "Measurements
+// behind design choices").
+constexpr double kCompassBelow = 0.9;
+constexpr double kCompassAfterMove = 0.6;
 // Issue 28's floor: triangles still below it after smoothing get a node of their own (split_pass).
 constexpr double kSplitBelow = 0.3;
 // Rounds of split_pass: a split's new triangles may need one more.
@@ -167,9 +174,9 @@ class NodeStar {
 
 // Compass search on the worst element's quality around v, for nodes of poor elements.
 bool compass_search(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index v, NodeStar& star, const P2& centroid,
-                    const P2& ideal, const SurfaceMap& map) {
+                    const P2& ideal, const SurfaceMap& map, double below) {
   double now = star.worst();
-  if (!(now < 0.9)) return false;
+  if (!(now < below)) return false;
   bool kept = false;
   const size_t vi = static_cast<size_t>(v);
   P2 best_p = uv[vi];
@@ -234,7 +241,7 @@ bool move_node(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tr
       if (after > before + 1e-12 || (after >= lim && after > 0 && star.sum_log() > before_mean + 1e-12)) kept = true;
     }
   if (!kept) uv[vi] = p0, xyz[vi] = x0;
-  if (compass_search(uv, xyz, tris, v, star, centroid, ideal, map)) kept = true;
+  if (compass_search(uv, xyz, tris, v, star, centroid, ideal, map, kept ? kCompassAfterMove : kCompassBelow)) kept = true;
   return kept;
 }
 
