@@ -53,9 +53,11 @@ std::vector<size_t> insertion_order(const std::vector<P2>& points) {
   for (const P2& p : points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const double span = std::max((hi - lo).maxCoeff(), 1e-300);
   std::vector<std::uint64_t> key(n);
+  // A cell per coordinate; one that is not a number (a domain gone bad, refused further on) gets cell 0.
+  auto cell = [](double x) { return x > 0 ? (x < 65535 ? static_cast<std::uint32_t>(x) : 65535u) : 0u; };
   for (size_t k = 0; k < n; ++k) {
     const P2 q = (points[k] - lo) / span * 65535.0;
-    key[k] = hilbert_index(static_cast<std::uint32_t>(std::clamp(q.x(), 0.0, 65535.0)), static_cast<std::uint32_t>(std::clamp(q.y(), 0.0, 65535.0)));
+    key[k] = hilbert_index(cell(q.x()), cell(q.y()));
   }
   for (size_t end = n; end > 0;) {
     const size_t begin = end / 2 < 8 ? 0 : end / 2;
