@@ -8,18 +8,11 @@
 
 #include "readers.hpp"
 #include "wefm/core/sys/error.hpp"
+#include "wefm/core/sys/mix64.hpp"
 
 namespace wefm::io {
 
 namespace {
-
-std::uint64_t mix(std::uint64_t h) {  // splitmix64 finaliser: cheap and spreads all bits
-  h ^= h >> 30;
-  h *= 0xbf58476d1ce4e5b9ULL;
-  h ^= h >> 27;
-  h *= 0x94d049bb133111ebULL;
-  return h ^ (h >> 31);
-}
 
 std::uint64_t bits(double x) {
   if (x == 0) x = 0;  // -0 == 0 as the comparison below says, so it must hash alike
@@ -76,7 +69,7 @@ ReadResult merge_corners(const std::vector<Vec3>& corners, double tol, const std
     Table exact(corners.size());
     for (std::size_t i = 0; i < corners.size(); ++i) {
       const Vec3& c = corners[i];
-      const std::uint64_t h = mix(bits(c[0]) ^ mix(bits(c[1]) ^ mix(bits(c[2]))));
+      const std::uint64_t h = mix64(bits(c[0]) ^ mix64(bits(c[1]) ^ mix64(bits(c[2]))));
       Index& slot = exact.find(h, [&](Index d) { return corners[static_cast<std::size_t>(distinct[static_cast<std::size_t>(d)])] == c; });
       if (slot < 0) {
         slot = static_cast<Index>(distinct.size());
@@ -94,7 +87,7 @@ ReadResult merge_corners(const std::vector<Vec3>& corners, double tol, const std
       bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
     };
     auto key_hash = [](const Key& k) {
-      return mix(static_cast<std::uint64_t>(k.x) ^ mix(static_cast<std::uint64_t>(k.y) ^ mix(static_cast<std::uint64_t>(k.z))));
+      return mix64(static_cast<std::uint64_t>(k.x) ^ mix64(static_cast<std::uint64_t>(k.y) ^ mix64(static_cast<std::uint64_t>(k.z))));
     };
     std::vector<Key> cell_key;        // per occupied cell
     std::vector<Index> cell_first;    // per occupied cell: first vertex in it
