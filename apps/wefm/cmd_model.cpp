@@ -435,8 +435,7 @@ int run_model(const std::vector<std::string>& argv) {
       exit_code = std::max<int>(exit_code, code);
     }
   }
-  if (interrupted()) exit_code = stop_exit_code();
-  return exit_code;
+  return exit_after_stop(exit_code, q.model_path);
 }
 
 #else  // built without Open CASCADE

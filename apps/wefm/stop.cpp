@@ -91,6 +91,12 @@ bool interrupted() {
 
 int stop_exit_code() { return g_signal.load() == 0 && g_timed_out.load() ? kExitTimeLimit : kExitCancelled; }
 
+int exit_after_stop(int exit_code, const std::string& what) {
+  if (!interrupted()) return exit_code;
+  std::fprintf(stderr, "wefm: %s: %s\n", what.c_str(), stop_reason().c_str());
+  return stop_exit_code();
+}
+
 std::string stop_reason() {
   if (const int sig = g_signal.load(); sig != 0) return sig == SIGTERM ? "cancelled (SIGTERM)" : "cancelled (Ctrl-C)";
   if (g_timed_out.load()) {

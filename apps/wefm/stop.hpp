@@ -23,6 +23,10 @@ bool interrupted();
 // (also for a library cancel that no stop request caused). And a phrase saying why.
 int stop_exit_code();
 std::string stop_reason();
+// The command's exit code as it ends: unchanged when no stop was requested; else the stop's, and
+// "wefm: WHAT: REASON" on stderr. A stop heard between faces, or while the summary is written,
+// leaves no face to report it, and an exit of 6 or 7 must still say why.
+int exit_after_stop(int exit_code, const std::string& what);
 
 // --time-limit: the whole command must end within `seconds` from now (> 0).
 void set_time_limit(double seconds);

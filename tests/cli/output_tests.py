@@ -166,8 +166,9 @@ def start(args):
 
 
 def wait_for_handlers(p, limit=30.0):
-    """Until the process catches or blocks SIGINT and SIGTERM (SigCgt, SigBlk in /proc: the tool blocks
-    them across its huge-page re-exec, and a blocked signal waits for the handlers), or has ended.
+    """Until every thread of the process catches or blocks SIGINT and SIGTERM (SigCgt, SigBlk in /proc:
+    the tool blocks them across its huge-page re-exec, and a blocked signal waits for the handlers),
+    or it has ended.
     Before main() a signal ends the process by default, which says nothing about the tool; on a
     loaded machine the loader alone can take longer than any fixed delay."""
     want = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
@@ -179,11 +180,20 @@ def wait_for_handlers(p, limit=30.0):
             if os.path.realpath(f"/proc/{p.pid}/exe") != tool:
                 time.sleep(0.002)
                 continue
-            with open(f"/proc/{p.pid}/status") as f:
-                masks = {l.split(":")[0]: int(l.split()[1], 16) for l in f if l.startswith(("SigCgt:", "SigBlk:"))}
+            # Every thread: the libraries start threads of their own before main() (OpenBLAS's pool),
+            # with the signals open; until main() has held them and re-executed, a signal can land on
+            # one of those and end the process by default. Handlers (SigCgt) are the process's.
+            ready = True
+            for tid in os.listdir(f"/proc/{p.pid}/task"):
+                try:
+                    with open(f"/proc/{p.pid}/task/{tid}/status") as f:
+                        masks = {l.split(":")[0]: int(l.split()[1], 16) for l in f if l.startswith(("SigCgt:", "SigBlk:"))}
+                except OSError:
+                    continue  # that thread has ended
+                ready = ready and (masks.get("SigCgt", 0) | masks.get("SigBlk", 0)) & want == want
         except (OSError, ValueError):
             return
-        if (masks.get("SigCgt", 0) | masks.get("SigBlk", 0)) & want == want:
+        if ready:
             return
         time.sleep(0.002)
 
