@@ -18,6 +18,7 @@ the triangle (0,0,0) (1,0,0) (0.9,0.2,0) extruded by 0.3 in z twice, `Save "x.br
 usage: model_mesh_test.py WEFM CAD_MORE_DIR
 """
 import json
+import math
 import os
 import subprocess
 import sys
@@ -162,9 +163,30 @@ def check_coincident_faces(wefm, path, tmp):
     print(f"touching_prisms.brep: faces meshed alike {pairs}")
 
 
+def corner_lambda_bound(degrees):
+    """The largest Lo lambda a triangle with an angle of `degrees` can have (isosceles about it)."""
+    t = math.radians(degrees)
+    return 2 * math.sqrt(3) * math.sin(t) / (2 + 4 * math.sin(t / 2) ** 2)
+
+
+def check_merge_refusals(wefm, folder, tmp):
+    """A merge whose merged face would keep a corner under 10 degrees is refused without meshing the
+    merged face (no triangle in that corner can reach the floor): the report says so and names the
+    corner, and the corner is real: the model's min lambda is at most what a triangle in it can have.
+    b123d_M6x12_countersunk_screw: thread run-outs, whose narrow faces end in corners of 3-12 degrees."""
+    r, _, _ = mesh_model(wefm, os.path.join(folder, "b123d_M6x12_countersunk_screw.step"), tmp, "screw")
+    kept = [m for m in r["merged_faces"] if "keeps a corner of" in m["reason"]]
+    assert kept, [m["reason"] for m in r["merged_faces"]]
+    angles = [float(m["reason"].split("keeps a corner of ")[1].split()[0]) for m in kept]
+    assert max(angles) < 10, angles
+    assert r["lambda_min"] <= corner_lambda_bound(min(angles)) + 1e-9, (r["lambda_min"], angles)
+    print(f"b123d_M6x12_countersunk_screw: {len(kept)} merges refused for corners of {sorted(angles)} degrees, "
+          f"min lambda {r['lambda_min']:.3f}")
+
+
 def main():
     wefm, folder = sys.argv[1:3]
-    missing = [m for m, _ in MODELS + CONFORMING_AT if not os.path.exists(os.path.join(folder, m))]
+    missing = [m for m, _ in MODELS + CONFORMING_AT + [("b123d_M6x12_countersunk_screw.step", 0)] if not os.path.exists(os.path.join(folder, m))]
     if missing:
         print(f"the models {missing} are not in {folder}")
         return 1
@@ -174,6 +196,7 @@ def main():
         for m, ratio in CONFORMING_AT:
             check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
+        check_merge_refusals(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
     return 0
 
