@@ -2,14 +2,14 @@
 
 #include <cmath>
 #include <limits>
-#include <vector>
 
 namespace wefm::meshing {
 namespace {
 
 // Exact arithmetic on expansions: sums of non-overlapping doubles in increasing magnitude, built
-// from error-free transformations. fma gives the exact product error in one step.
-using Expansion = std::vector<double>;
+// from error-free transformations. fma gives the exact product error in one step. Expansions live in
+// fixed buffers on the stack: the filters fail on every nearly collinear boundary, and a heap
+// allocation per intermediate made the exact path cost more than the meshing around it.
 
 inline void two_sum(double a, double b, double& s, double& e) {
   s = a + b;
@@ -17,57 +17,64 @@ inline void two_sum(double a, double b, double& s, double& e) {
   e = (a - av) + (b - bv);
 }
 
-Expansion from_diff(double a, double b) {
-  double s, e;
-  two_sum(a, -b, s, e);
-  return {e, s};
-}
-
-Expansion grow(const Expansion& x, double b) {
-  Expansion out;
-  out.reserve(x.size() + 1);
+// h[0..n) += b in place; returns the new length, at most n + 1 (h must hold it). Each output term
+// is written at or before the input term just read, so the input is never overwritten unread.
+int grow(double* h, int n, double b) {
   double q = b;
-  for (double xi : x) {
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
     double s, e;
-    two_sum(q, xi, s, e);
-    if (e != 0) out.push_back(e);
+    two_sum(q, h[i], s, e);
+    if (e != 0) h[k++] = e;
     q = s;
   }
-  out.push_back(q);
+  h[k++] = q;
+  return k;
+}
+
+// x[0..nx) * b into out (room for 2 nx terms); returns its length.
+int scale(const double* x, int nx, double b, double* out) {
+  int n = 0;
+  for (int i = 0; i < nx; ++i) {
+    const double p = x[i] * b;
+    n = grow(out, n, std::fma(x[i], b, -p));
+    n = grow(out, n, p);
+  }
+  return n;
+}
+
+// An expansion of at most N terms.
+template <int N>
+struct Expansion {
+  double v[N];
+  int n = 0;
+};
+
+// The exact difference a - b (two terms).
+Expansion<2> diff(double a, double b) {
+  Expansion<2> out;
+  two_sum(a, -b, out.v[1], out.v[0]);
+  out.n = 2;
   return out;
 }
 
-Expansion add(const Expansion& x, const Expansion& y) {
-  Expansion r = x;
-  for (double v : y) r = grow(r, v);
-  return r;
-}
+constexpr int kProductTerms(int nx, int ny) { return 2 * nx * ny; }
 
-Expansion scale(const Expansion& x, double b) {
-  Expansion r;
-  for (double xi : x) {
-    const double p = xi * b;
-    const double e = std::fma(xi, b, -p);
-    r = grow(r, e);
-    r = grow(r, p);
+// acc += sign x y. acc grows by at most one term per term of each scaled copy of x: 2 |x| |y| in
+// all (its capacity N must allow for that on top of its length).
+template <int N, int NX, int NY>
+void add_product(Expansion<N>& acc, const Expansion<NX>& x, const Expansion<NY>& y, double sign) {
+  double scaled[2 * NX];
+  for (int j = 0; j < y.n; ++j) {
+    const int m = scale(x.v, x.n, sign * y.v[j], scaled);
+    for (int k = 0; k < m; ++k) acc.n = grow(acc.v, acc.n, scaled[k]);
   }
-  return r;
 }
 
-Expansion mul(const Expansion& x, const Expansion& y) {
-  Expansion r;
-  for (double v : y) r = add(r, scale(x, v));
-  return r;
-}
-
-Expansion neg(Expansion x) {
-  for (double& v : x) v = -v;
-  return x;
-}
-
-double sign_of(const Expansion& x) {
-  for (auto it = x.rbegin(); it != x.rend(); ++it)
-    if (*it != 0) return *it > 0 ? 1.0 : -1.0;
+template <int N>
+double sign_of(const Expansion<N>& x) {
+  for (int i = x.n - 1; i >= 0; --i)
+    if (x.v[i] != 0) return x.v[i] > 0 ? 1.0 : -1.0;
   return 0.0;
 }
 
@@ -75,23 +82,38 @@ constexpr double kEps = std::numeric_limits<double>::epsilon() * 0.5;
 // Error bound coefficient chosen generously above Shewchuk's (10+96e)e (orient2d's is in the header).
 constexpr double kIncircleBound = 12.0 * kEps;
 
+// x0 y0 - x1 y1 of two-term differences: at most 2 * 8 terms.
+using Cross = Expansion<2 * kProductTerms(2, 2)>;
+Cross cross(const Expansion<2>& x0, const Expansion<2>& y0, const Expansion<2>& x1, const Expansion<2>& y1) {
+  Cross out;
+  add_product(out, x0, y0, 1.0);
+  add_product(out, x1, y1, -1.0);
+  return out;
+}
+
 double orient_exact(const P2& a, const P2& b, const P2& c) {
-  const Expansion acx = from_diff(a.x(), c.x()), acy = from_diff(a.y(), c.y());
-  const Expansion bcx = from_diff(b.x(), c.x()), bcy = from_diff(b.y(), c.y());
-  return sign_of(add(mul(acx, bcy), neg(mul(acy, bcx))));
+  return sign_of(cross(diff(a.x(), c.x()), diff(b.y(), c.y()), diff(a.y(), c.y()), diff(b.x(), c.x())));
 }
 
 double incircle_exact(const P2& a, const P2& b, const P2& c, const P2& d) {
-  const Expansion adx = from_diff(a.x(), d.x()), ady = from_diff(a.y(), d.y());
-  const Expansion bdx = from_diff(b.x(), d.x()), bdy = from_diff(b.y(), d.y());
-  const Expansion cdx = from_diff(c.x(), d.x()), cdy = from_diff(c.y(), d.y());
-  const Expansion alift = add(mul(adx, adx), mul(ady, ady));
-  const Expansion blift = add(mul(bdx, bdx), mul(bdy, bdy));
-  const Expansion clift = add(mul(cdx, cdx), mul(cdy, cdy));
-  const Expansion bc = add(mul(bdx, cdy), neg(mul(bdy, cdx)));
-  const Expansion ca = add(mul(cdx, ady), neg(mul(cdy, adx)));
-  const Expansion ab = add(mul(adx, bdy), neg(mul(ady, bdx)));
-  return sign_of(add(add(mul(alift, bc), mul(blift, ca)), mul(clift, ab)));
+  const Expansion<2> adx = diff(a.x(), d.x()), ady = diff(a.y(), d.y());
+  const Expansion<2> bdx = diff(b.x(), d.x()), bdy = diff(b.y(), d.y());
+  const Expansion<2> cdx = diff(c.x(), d.x()), cdy = diff(c.y(), d.y());
+  // |p - d|^2 = dx dx - (-dy) dy.
+  auto lift = [](const Expansion<2>& dx, const Expansion<2>& dy) {
+    Cross out;
+    add_product(out, dx, dx, 1.0);
+    add_product(out, dy, dy, 1.0);
+    return out;
+  };
+  const Cross alift = lift(adx, ady), blift = lift(bdx, bdy), clift = lift(cdx, cdy);
+  const Cross bc = cross(bdx, cdy, bdy, cdx), ca = cross(cdx, ady, cdy, adx), ab = cross(adx, bdy, ady, bdx);
+  // Three products of 16-term expansions: 3 * 2 * 16 * 16 terms at most (12 KB on the stack).
+  Expansion<3 * kProductTerms(16, 16)> det;
+  add_product(det, alift, bc, 1.0);
+  add_product(det, blift, ca, 1.0);
+  add_product(det, clift, ab, 1.0);
+  return sign_of(det);
 }
 
 }  // namespace
