@@ -110,8 +110,8 @@ void PointGrid::grow() {
 
 void PointGrid::add(const double* p, int32_t id) {
   if (2 * (cells_ + 1) > keys_.size()) grow();
-  const uint64_t key = cell_key(static_cast<int64_t>(std::floor(p[0] / tol_)), static_cast<int64_t>(std::floor(p[1] / tol_)),
-                                static_cast<int64_t>(std::floor(p[2] / tol_)));
+  const uint64_t key = cell_key(static_cast<int64_t>(std::floor(p[0] / cell_)), static_cast<int64_t>(std::floor(p[1] / cell_)),
+                                static_cast<int64_t>(std::floor(p[2] / cell_)));
   const size_t s = slot(key);
   const auto entry = static_cast<int32_t>(ids_.size());
   ids_.push_back(id);
@@ -128,12 +128,15 @@ void PointGrid::add(const double* p, int32_t id) {
 
 int32_t PointGrid::find(const double* p, const std::vector<double>& xyz) const {
   if (keys_.empty()) return -1;
-  const int64_t i = static_cast<int64_t>(std::floor(p[0] / tol_)), j = static_cast<int64_t>(std::floor(p[1] / tol_)),
-                k = static_cast<int64_t>(std::floor(p[2] / tol_));
-  for (int64_t di = -1; di <= 1; ++di)
-    for (int64_t dj = -1; dj <= 1; ++dj)
-      for (int64_t dk = -1; dk <= 1; ++dk) {
-        const size_t s = slot(cell_key(i + di, j + dj, k + dk));
+  int64_t lo[3], hi[3];
+  for (int c = 0; c < 3; ++c) {
+    lo[c] = static_cast<int64_t>(std::floor((p[c] - 2 * tol_) / cell_));
+    hi[c] = static_cast<int64_t>(std::floor((p[c] + 2 * tol_) / cell_));
+  }
+  for (int64_t i = lo[0]; i <= hi[0]; ++i)
+    for (int64_t j = lo[1]; j <= hi[1]; ++j)
+      for (int64_t k = lo[2]; k <= hi[2]; ++k) {
+        const size_t s = slot(cell_key(i, j, k));
         for (int32_t e = first_[s]; e >= 0; e = next_[static_cast<size_t>(e)]) {
           const int32_t id = ids_[static_cast<size_t>(e)];
           const double* q = &xyz[3 * static_cast<size_t>(id)];
