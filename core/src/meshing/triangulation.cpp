@@ -161,15 +161,18 @@ void Triangulation::renumber_slots() {
   // Slots by their corners' numbers, which run along the loops: refinement takes equal candidates
   // in slot order, and in an order along the boundary its fronts advance along a strip instead of
   // meeting from random places, which leaves more nodes in thin strips.
-  std::vector<Index> live;
+  // (sorted corners, slot) per live triangle: no two live triangles have the same corners, so the
+  // order is that of the corners alone.
+  std::vector<std::array<Index, 4>> keys;
   for (Index t = 0; t < static_cast<Index>(tris_.size()); ++t)
-    if (tris_[t].live) live.push_back(t);
-  auto sorted_corners = [&](Index t) {
-    std::array<Index, 3> v = tris_[t].v;
-    std::sort(v.begin(), v.end());
-    return v;
-  };
-  std::sort(live.begin(), live.end(), [&](Index x, Index y) { return sorted_corners(x) < sorted_corners(y); });
+    if (tris_[t].live) {
+      std::array<Index, 4> k{tris_[t].v[0], tris_[t].v[1], tris_[t].v[2], t};
+      std::sort(k.begin(), k.begin() + 3);
+      keys.push_back(k);
+    }
+  std::sort(keys.begin(), keys.end());
+  std::vector<Index> live(keys.size());
+  for (size_t k = 0; k < keys.size(); ++k) live[k] = keys[k][3];
   std::vector<Index> slot_of(tris_.size(), -1);
   for (size_t k = 0; k < live.size(); ++k) slot_of[static_cast<size_t>(live[k])] = static_cast<Index>(k);
   std::vector<T> out;
