@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -189,28 +190,37 @@ std::vector<std::pair<double, std::array<long long, 2>>> sharp_corners(const wef
   return out;
 }
 
-// Whether the library takes the merged face: its topology (loops close, edges are facet edges,
-// one outer loop), and its flattening meshes at size h (a strip folded at a kink can flatten onto
-// itself: "the domain's boundary intersects itself") with min Lo lambda kLambdaFloor.
-bool library_takes(const wefm_cad::CadFace& f, double h, std::string& why) {
+// One trial of a merged face: flattened at `s` (NaN: the library's default) and meshed at size h.
+// `retry` is set where a conformal flattening was unusable (a negative score) or the mesher refused
+// it: mesh-model flattens such a face again at the default s, and so does the trial.
+bool trial(const wefm_cad::CadFace& f, double h, double s, std::string& why, bool& retry) {
+  retry = false;
   wefm_face* raw = nullptr;
   if (wefm_face_create(&raw) != WEFM_OK) return why = "out of memory", false;
   std::unique_ptr<wefm_face, FaceDeleter> handle(raw);
   std::string error;
-  if (wefm_cad::set_face_from_cad(raw, f, error) != WEFM_OK || wefm_face_build(raw) != WEFM_OK)
+  wefm_options o;
+  wefm_options_init(&o);
+  if (std::isfinite(s)) o.s = s;
+  if (wefm_cad::set_face_from_cad(raw, f, error) != WEFM_OK || wefm_face_set_options(raw, &o) != WEFM_OK || wefm_face_build(raw) != WEFM_OK)
     return why = "topology: " + (error.empty() ? std::string(wefm_face_last_error(raw)) : error), false;
   const wefm_status st = wefm_face_solve(raw);
   int32_t has = 0;
   wefm_face_has_result(raw, &has);
+  const bool conformal = std::isfinite(s);
   if (st != WEFM_OK && !(st == WEFM_ERROR_NOT_CONVERGED && has))
-    return why = std::string("flatten: ") + wefm_face_last_error(raw), false;
+    return retry = conformal, why = std::string("flatten: ") + wefm_face_last_error(raw), false;
+  wefm_report rep;
+  wefm_report_init(&rep, sizeof rep);
+  if (conformal && wefm_face_get_report(raw, &rep) == WEFM_OK && !(rep.score >= 0))
+    return retry = true, why = "flatten: the conformal domain has a flipped triangle or crosses itself", false;
   wefm_mesh_options options;
   wefm_mesh_options_init(&options, sizeof options);
   options.size = h;
   wefm_domain_mesh* dm = nullptr;
   const wefm_status ms = wefm_face_mesh_domain(raw, &options, &dm);
   OwnedDomainMesh owned(dm);
-  if (ms != WEFM_OK) return why = std::string("mesh: ") + wefm_face_last_error(raw), false;
+  if (ms != WEFM_OK) return retry = conformal, why = std::string("mesh: ") + wefm_face_last_error(raw), false;
   // A merge is made for the quality floor: one that does not reach it on its own (the narrow face's
   // short end edges left in a corner of the merged face) is not made.
   wefm_mesh_report report;
@@ -221,6 +231,16 @@ bool library_takes(const wefm_cad::CadFace& f, double h, std::string& why) {
     return why = text, false;
   }
   return true;
+}
+
+// Whether the library takes the merged face: its topology (loops close, edges are facet edges,
+// one outer loop), and its flattening, conformal first as mesh-model's (then at the default s),
+// meshes at size h (a strip folded at a kink can flatten onto itself: "the domain's boundary
+// intersects itself") with min Lo lambda kLambdaFloor.
+bool library_takes(const wefm_cad::CadFace& f, double h, std::string& why) {
+  bool retry = false;
+  if (trial(f, h, 0.0, why, retry)) return true;
+  return retry && trial(f, h, std::numeric_limits<double>::quiet_NaN(), why, retry);
 }
 
 // Merges face b into face a across the edges they share (`shared`: pairs of edge index in a, in b).

@@ -184,6 +184,26 @@ def check_merge_refusals(wefm, folder, tmp):
           f"min lambda {r['lambda_min']:.3f}")
 
 
+def check_conformal_first(wefm, folder, tmp):
+    """Without --s every face is flattened conformally, and flattened again at s = 1 where the conformal
+    domain is unusable or refused, with the reason in the report: gmsh_wing_fuselage's two half-cone
+    tips (revolution faces) flatten conformally onto a boundary that crosses itself, so the run exits 0
+    only if they fall back. With --s 1 every face is flattened at 1 and nothing falls back."""
+    r, _, _ = mesh_model(wefm, os.path.join(folder, "gmsh_wing_fuselage.step"), tmp, "wing")
+    flattened = [f for f in r["faces"] if not f["mesh_of_face"]]  # not a copy of a face lying on it
+    s_of = {f["face"]: f["flatten_s"] for f in flattened}
+    assert set(s_of.values()) <= {0, 1}, s_of
+    again = [f for f in flattened if f["flatten_s"] == 1]
+    assert again, "no face fell back to s = 1"
+    for f in flattened:
+        assert (f["flatten_s"] == 1) == (f["conformal_refused"] is not None), f
+    r, _, _ = mesh_model(wefm, os.path.join(folder, "gmsh_cube_filet.stp"), tmp, "cube_s1", "--s", "1")
+    flattened = [f for f in r["faces"] if not f["mesh_of_face"]]
+    assert flattened and all(f["flatten_s"] == 1 and f["conformal_refused"] is None for f in flattened), r["faces"]
+    print(f"gmsh_wing_fuselage: faces {[f['face'] for f in again]} flattened again at s = 1 "
+          f"({again[0]['conformal_refused']}); {len(s_of) - len(again)} conformal")
+
+
 def main():
     wefm, folder = sys.argv[1:3]
     missing = [m for m, _ in MODELS + CONFORMING_AT + [("b123d_M6x12_countersunk_screw.step", 0)] if not os.path.exists(os.path.join(folder, m))]
@@ -197,6 +217,7 @@ def main():
             check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
         check_merge_refusals(wefm, folder, tmp)
+        check_conformal_first(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
     return 0
 
