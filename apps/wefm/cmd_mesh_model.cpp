@@ -147,11 +147,10 @@ wefm_status fetch(std::vector<T>& out, G get) {
 
 // Without --s a face is flattened conformally first: a conformal map keeps angles, so the mesher's
 // well-shaped UV triangles stay well shaped in 3D, and its area distortion only rescales sizes,
-// which the 3D size field absorbs. Over the 59 cad-more models at 1/40 of the diagonal it gave
-// lambda_mesh as high or higher on 54 of the 57 both meshed, at a third of the flattening time
-// (docs/PERFORMANCE.md). Where the conformal domain is unusable (a flipped triangle, a boundary
-// crossing itself: the score is negative) or the mesher refuses it, the face is flattened again at
-// the given s, as it was before.
+// which the 3D size field absorbs; and it is one linear solve, where s = 1 needs a continuation
+// (docs/PERFORMANCE.md, "Measurements behind design choices"). Where the conformal domain is
+// unusable (a flipped triangle, a boundary crossing itself: the score is negative) or the mesher
+// refuses it, the face is flattened again at the given s, as it was before.
 constexpr double kConformalS = 0;
 
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,

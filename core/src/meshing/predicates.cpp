@@ -8,8 +8,8 @@ namespace {
 
 // Exact arithmetic on expansions: sums of non-overlapping doubles in increasing magnitude, built
 // from error-free transformations. fma gives the exact product error in one step. Expansions live in
-// fixed buffers on the stack: the filters fail on every nearly collinear boundary, and a heap
-// allocation per intermediate made the exact path cost more than the meshing around it.
+// fixed buffers on the stack: the filters fail on every nearly collinear boundary (a straight model
+// edge's nodes), so the exact path is a common one and must not allocate.
 
 inline void two_sum(double a, double b, double& s, double& e) {
   s = a + b;
