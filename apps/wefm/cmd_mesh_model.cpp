@@ -894,6 +894,15 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
   }
   rep["faces"] = faces;
   rep["merged_faces"] = merges_json(plan.virtual_faces);
+  // Corners where no triangle can reach Lo lambda 0.3, whatever the mesh: a quality check can tell
+  // the slivers the geometry forces from those the mesher left.
+  Json corners = Json::array();
+  for (const FaceMeshRun& r : runs)
+    for (const SharpCorner& c : sharp_corners(*r.face, kFloorCornerDegrees)) {
+      const double* x = &r.face->xyz[3 * static_cast<size_t>(c.vertex)];
+      corners.push_back({{"face", r.face->index}, {"degrees", c.degrees}, {"point", {x[0], x[1], x[2]}}, {"edges", c.edges}});
+    }
+  rep["sharp_corners"] = corners;
   return rep;
 }
 

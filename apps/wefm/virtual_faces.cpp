@@ -40,9 +40,8 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kSharpCornerDegrees = 12;
 // The quality a merge is for (issue 28: min Lo lambda 0.3 on every model).
 constexpr double kLambdaFloor = 0.3;
-// A corner this sharp caps every triangle in it below kLambdaFloor (0.296 at 10 degrees by the bound
-// above): a merged face that keeps one cannot reach the floor, so it is not meshed to find out.
-constexpr double kFloorCornerDegrees = 10;
+// A merged face that keeps a corner under kFloorCornerDegrees (virtual_faces.hpp) cannot reach
+// kLambdaFloor, so it is not meshed to find out.
 
 using Normal = std::array<double, 3>;
 
@@ -146,48 +145,6 @@ bool manifold(const std::vector<int32_t>& tris) {
     for (size_t c = 0; c < 3; ++c)
       if (!directed.insert({tris[t + c], tris[t + (c + 1) % 3]}).second) return false;
   return true;
-}
-
-// The face's corners sharper than `below` degrees: (angle in degrees, the ids of the two model edges
-// meeting there), sharpest first. The angle is the turn of the loop seen along the facets' normal at the
-// corner, so a corner of 350 degrees (a notch) is not taken for one of 10.
-std::vector<std::pair<double, std::array<long long, 2>>> sharp_corners(const wefm_cad::CadFace& f, double below) {
-  std::vector<std::pair<double, std::array<long long, 2>>> out;
-  std::map<int32_t, Normal> normal;  // at the corner vertices: sum of the facet normals around
-  auto chain = [&](const wefm_cad::CadEdgeUse& u) {
-    std::vector<int32_t> c = f.edges[static_cast<size_t>(u.edge)].vertices;
-    if (u.reversed) std::reverse(c.begin(), c.end());
-    return c;
-  };
-  for (const auto& loop : f.loops)
-    for (const auto& u : loop) normal[chain(u).front()] = {0, 0, 0};
-  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
-    for (size_t c = 0; c < 3; ++c) {
-      const auto it = normal.find(f.triangles[3 * t + c]);
-      if (it == normal.end()) continue;
-      const Normal n = facet_normal(f, t);
-      for (size_t k = 0; k < 3; ++k) it->second[k] += n[k];
-    }
-  for (const auto& loop : f.loops)
-    for (size_t k = 0; k < loop.size(); ++k) {
-      // A pole (a degenerate edge) between two edges is a corner of the two: a patch narrowing to
-      // a point.
-      size_t next = (k + 1) % loop.size();
-      if (f.edges[static_cast<size_t>(loop[next].edge)].vertices.size() < 2) next = (next + 1) % loop.size();
-      const auto in = chain(loop[k]), out_chain = chain(loop[next]);
-      if (in.size() < 2 || out_chain.size() < 2 || in.back() != out_chain.front()) continue;
-      const double *p = at(f, in[in.size() - 2]), *q = at(f, in.back()), *r = at(f, out_chain[1]);
-      const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, b[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
-      const Normal& n = normal[in.back()];
-      const double cross = (a[1] * b[2] - a[2] * b[1]) * n[0] + (a[2] * b[0] - a[0] * b[2]) * n[1] + (a[0] * b[1] - a[1] * b[0]) * n[2];
-      const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!(nn > 0)) continue;
-      const double angle = 180 - std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180 / kPi;
-      if (angle < below)
-        out.push_back({angle, {f.edges[static_cast<size_t>(loop[k].edge)].id, f.edges[static_cast<size_t>(loop[next].edge)].id}});
-    }
-  std::sort(out.begin(), out.end());
-  return out;
 }
 
 // One trial of a merged face: flattened at `s` (NaN: the library's default) and meshed at size h.
@@ -323,7 +280,7 @@ bool merge_pair(const wefm_cad::CadFace& a, const wefm_cad::CadFace& b, const st
   out.triangulation_kept = a.triangulation_kept && b.triangulation_kept;
   if (const auto corners = sharp_corners(out, kFloorCornerDegrees); !corners.empty()) {
     char text[96];
-    std::snprintf(text, sizeof text, "the merged face keeps a corner of %.1f degrees", corners[0].first);
+    std::snprintf(text, sizeof text, "the merged face keeps a corner of %.1f degrees", corners[0].degrees);
     return why = text, false;
   }
   return library_takes(out, h, why);
@@ -376,6 +333,47 @@ std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, s
 }
 
 }  // namespace
+
+// The angle is the turn of the loop seen along the facets' normal at the corner, so a corner of 350
+// degrees (a notch) is not taken for one of 10.
+std::vector<SharpCorner> sharp_corners(const wefm_cad::CadFace& f, double below) {
+  std::vector<SharpCorner> out;
+  std::map<int32_t, Normal> normal;  // at the corner vertices: sum of the facet normals around
+  auto chain = [&](const wefm_cad::CadEdgeUse& u) {
+    std::vector<int32_t> c = f.edges[static_cast<size_t>(u.edge)].vertices;
+    if (u.reversed) std::reverse(c.begin(), c.end());
+    return c;
+  };
+  for (const auto& loop : f.loops)
+    for (const auto& u : loop) normal[chain(u).front()] = {0, 0, 0};
+  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
+    for (size_t c = 0; c < 3; ++c) {
+      const auto it = normal.find(f.triangles[3 * t + c]);
+      if (it == normal.end()) continue;
+      const Normal n = facet_normal(f, t);
+      for (size_t k = 0; k < 3; ++k) it->second[k] += n[k];
+    }
+  for (const auto& loop : f.loops)
+    for (size_t k = 0; k < loop.size(); ++k) {
+      // A pole (a degenerate edge) between two edges is a corner of the two: a patch narrowing to
+      // a point.
+      size_t next = (k + 1) % loop.size();
+      if (f.edges[static_cast<size_t>(loop[next].edge)].vertices.size() < 2) next = (next + 1) % loop.size();
+      const auto in = chain(loop[k]), out_chain = chain(loop[next]);
+      if (in.size() < 2 || out_chain.size() < 2 || in.back() != out_chain.front()) continue;
+      const double *p = at(f, in[in.size() - 2]), *q = at(f, in.back()), *r = at(f, out_chain[1]);
+      const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, b[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
+      const Normal& n = normal[in.back()];
+      const double cross = (a[1] * b[2] - a[2] * b[1]) * n[0] + (a[2] * b[0] - a[0] * b[2]) * n[1] + (a[0] * b[1] - a[1] * b[0]) * n[2];
+      const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(nn > 0)) continue;
+      const double angle = 180 - std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180 / kPi;
+      if (angle < below)
+        out.push_back({angle, {f.edges[static_cast<size_t>(loop[k].edge)].id, f.edges[static_cast<size_t>(loop[next].edge)].id}, in.back()});
+    }
+  std::sort(out.begin(), out.end(), [](const SharpCorner& a, const SharpCorner& b) { return a.degrees < b.degrees; });
+  return out;
+}
 
 namespace {
 
@@ -482,8 +480,8 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
     const auto corners = sharp_corners(merger.face(i), kSharpCornerDegrees);
     if (corners.empty()) continue;
     char reason[96];
-    std::snprintf(reason, sizeof reason, "sharp corner: %.1f degrees below %g", corners[0].first, kSharpCornerDegrees);
-    merger.merge(i, {corners[0].second[0], corners[0].second[1]}, kCornerSharpDegrees, wefm_cad::face_width(merger.face(i)), reason);
+    std::snprintf(reason, sizeof reason, "sharp corner: %.1f degrees below %g", corners[0].degrees, kSharpCornerDegrees);
+    merger.merge(i, {corners[0].edges[0], corners[0].edges[1]}, kCornerSharpDegrees, wefm_cad::face_width(merger.face(i)), reason);
   }
   return merger.finish();
 }

@@ -59,7 +59,10 @@ def read_msh41(path):
     return np.asarray(xyz, dtype=float).reshape(-1, 3), t
 
 
-def quality(xyz, tris):
+def quality(xyz, tris, corners=(), tol=0.0):
+    """Lo's lambda over the triangles, edge uses. `corners`: points of the model where no triangle can
+    reach lambda 0.3 (wefm's report, `sharp_corners`); "lambda_min_off_corners" is the minimum over
+    the triangles with no node within `tol` of one."""
     if len(tris) == 0:
         return {"triangles": 0}
     p, q, r = xyz[tris[:, 0]], xyz[tris[:, 1]], xyz[tris[:, 2]]
@@ -68,10 +71,17 @@ def quality(xyz, tris):
     lam = np.where(sq > 0, 4 * np.sqrt(3) * area / np.where(sq > 0, sq, 1), 0.0)
     e = np.sort(np.concatenate([tris[:, [0, 1]], tris[:, [1, 2]], tris[:, [2, 0]]]), axis=1)
     _, uses = np.unique(e, axis=0, return_counts=True)
-    return {"triangles": int(len(tris)), "lambda_mesh": float(np.exp(np.log(np.maximum(lam, 1e-300)).mean())),
-            "lambda_min": float(lam.min()), "below_0_6": float((lam < 0.6).mean()),
-            "zero_area": int((lam < 1e-12).sum()),
-            "open_edges": int((uses == 1).sum()), "non_manifold_edges": int((uses > 2).sum())}
+    out = {"triangles": int(len(tris)), "lambda_mesh": float(np.exp(np.log(np.maximum(lam, 1e-300)).mean())),
+           "lambda_min": float(lam.min()), "below_0_6": float((lam < 0.6).mean()),
+           "zero_area": int((lam < 1e-12).sum()),
+           "open_edges": int((uses == 1).sum()), "non_manifold_edges": int((uses > 2).sum())}
+    if len(corners):
+        at_corner = np.zeros(len(xyz), dtype=bool)
+        for c in corners:
+            at_corner |= np.abs(xyz - np.asarray(c, dtype=float)).max(axis=1) <= tol
+        off = ~at_corner[tris].any(axis=1)
+        out["lambda_min_off_corners"] = float(lam[off].min()) if off.any() else 1.0
+    return out
 
 
 def run(cmd, log, timeout):
@@ -113,7 +123,10 @@ def one(a, model, ratio):
                            unexplained_non_manifold=c.get("unexplained_non_manifold_edges"),
                            brep_free_edges=c.get("brep_free_edge_segments"))
     if os.path.exists(w_msh):
-        row["wefm"].update(quality(*read_msh41(w_msh)))
+        corners = [c["point"] for c in rep.get("sharp_corners", [])] if rep else []
+        row["wefm"].update(quality(*read_msh41(w_msh), corners, 1e-6 * rep["bbox_diagonal"] if rep else 0.0))
+        if rep and rep.get("sharp_corners"):
+            row["wefm"]["sharpest_corner"] = min(c["degrees"] for c in rep["sharp_corners"])
     with open(base + ".wefm.log") as f:
         tail = [l for l in f.read().splitlines() if l.startswith("wefm")]
     row["wefm"]["messages"] = tail[:5]
@@ -162,7 +175,13 @@ def verdict(r):
     if w.get("zero_area"):
         out.append(f"{w['zero_area']} zero-area")
     if w.get("lambda_min") is not None and w["lambda_min"] < 0.3:
-        out.append(f"min lambda {w['lambda_min']:.3f}")
+        off = w.get("lambda_min_off_corners")
+        if off is None:
+            out.append(f"min lambda {w['lambda_min']:.3f}")
+        elif off >= 0.3:
+            out.append(f"min lambda {w['lambda_min']:.3f} only at corners under 10 deg (sharpest {w['sharpest_corner']:.1f})")
+        else:
+            out.append(f"min lambda {w['lambda_min']:.3f} ({off:.3f} off corners under 10 deg)")
     if g.get("lambda_mesh") and w.get("lambda_mesh") and w["lambda_mesh"] < g["lambda_mesh"]:
         out.append("lambda_mesh < gmsh")
     if g.get("wall") and g.get("exit") == 0 and w["wall"] > 2 * g["wall"]:
@@ -200,12 +219,15 @@ def summary(rows):
     failed = sum(r["wefm"].get("failed_faces") or 0 for r in rows)
     unex = sum(1 for r in rows if r["wefm"].get("unexplained_open") or r["wefm"].get("unexplained_non_manifold"))
     sliver = sum(1 for r in rows if r["wefm"].get("lambda_min") is not None and r["wefm"]["lambda_min"] < 0.3)
+    forced = sum(1 for r in rows if r["wefm"].get("lambda_min") is not None and r["wefm"]["lambda_min"] < 0.3
+                 and r["wefm"].get("lambda_min_off_corners", 0) >= 0.3)
     both = [r for r in rows if r["wefm"]["exit"] == 0 and r.get("gmsh", {}).get("exit") == 0]
     tw = sum(r["wefm"]["wall"] for r in both)
     tg = sum(r["gmsh"]["wall"] for r in both)
     better = sum(1 for r in both if r["wefm"].get("lambda_mesh", 0) >= r["gmsh"].get("lambda_mesh", 1))
     return (f"{n} models: {ok} meet every bar; {crashes} crashes, {hangs} hangs, {nonzero} non-zero exits, {failed} failed faces, "
-            f"{unex} with unexplained open/non-manifold edges, {sliver} with min λ < 0.3; on the {len(both)} both mesh: "
+            f"{unex} with unexplained open/non-manifold edges, {sliver} with min λ < 0.3 ({forced} of them only in corners "
+            f"under 10 degrees, where no triangle can reach 0.3); on the {len(both)} both mesh: "
             f"λ_mesh ≥ Gmsh's on {better}, wall time {tw:.1f} s against Gmsh's {tg:.1f} s ({tw / tg if tg else 0:.2f}x)")
 
 
