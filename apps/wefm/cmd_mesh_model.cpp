@@ -18,6 +18,7 @@
 
 #include "owned.hpp"
 #include "command.hpp"
+#include "conformal_first.hpp"
 #include "exit_codes.hpp"
 
 #ifdef WEFM_CLI_HAVE_OCCT
@@ -145,14 +146,6 @@ wefm_status fetch(std::vector<T>& out, G get) {
   return n == 0 ? WEFM_OK : get(out.data(), n, &n);
 }
 
-// Without --s a face is flattened conformally first: a conformal map keeps angles, so the mesher's
-// well-shaped UV triangles stay well shaped in 3D, and its area distortion only rescales sizes,
-// which the 3D size field absorbs; and it is one linear solve, where s = 1 needs a continuation
-// (docs/PERFORMANCE.md, "Measurements behind design choices"). Where the conformal domain is
-// unusable (a flipped triangle, a boundary crossing itself: the score is negative) or the mesher
-// refuses it, the face is flattened again at the given s, as it was before.
-constexpr double kConformalS = 0;
-
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,
 // so a conformal domain that is unusable is meshed anyway (and fails or not as the mesher says).
 void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, const wefm_mesh_options& mesh_options,
@@ -186,12 +179,13 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
                 std::string("flatten: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
   wefm_report rep;
   wefm_report_init(&rep, sizeof rep);
+  rep.score = NAN;  // unknown unless the library reports it
   if (wefm_face_get_report(raw, &rep) == WEFM_OK) {
     r.score = rep.score;
     r.flips = rep.flipped_triangles;
   }
-  if (!last && !(r.score >= 0))
-    return fail(kExitSolver, "flatten: the conformal domain has a flipped triangle or crosses itself");
+  if (!last)
+    if (const char* why = conformal_unusable(rep)) return fail(kExitSolver, why);
   if (st == WEFM_ERROR_NOT_CONVERGED) {
     r.status = "not_converged";
     r.reason = std::string("flatten: ") + wefm_face_last_error(raw);
@@ -253,7 +247,7 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
 
 // `mapped` (or null): transfinite options tried first; where the library refuses them (not four
 // sides with matching node counts) the face is meshed with `mesh_options` on the same domain.
-// `conformal_first`: kConformalS is tried before the settings' s (see above).
+// `conformal_first`: kConformalS is tried before the settings' s (conformal_first.hpp).
 void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, bool conformal_first, const wefm_mesh_options& mesh_options,
                    const wefm_mesh_options* mapped, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
                    CancelWatcher& watcher) {

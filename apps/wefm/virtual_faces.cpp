@@ -12,6 +12,7 @@
 
 #include "cad_edge_nodes.hpp"
 #include "cad_wefm.hpp"
+#include "conformal_first.hpp"
 #include "owned.hpp"
 
 namespace wefm_cli {
@@ -169,8 +170,8 @@ bool trial(const wefm_cad::CadFace& f, double h, double s, std::string& why, boo
     return retry = conformal, why = std::string("flatten: ") + wefm_face_last_error(raw), false;
   wefm_report rep;
   wefm_report_init(&rep, sizeof rep);
-  if (conformal && wefm_face_get_report(raw, &rep) == WEFM_OK && !(rep.score >= 0))
-    return retry = true, why = "flatten: the conformal domain has a flipped triangle or crosses itself", false;
+  if (conformal && wefm_face_get_report(raw, &rep) == WEFM_OK)
+    if (const char* unusable = conformal_unusable(rep)) return retry = true, why = unusable, false;
   wefm_mesh_options options;
   wefm_mesh_options_init(&options, sizeof options);
   options.size = h;
@@ -196,7 +197,7 @@ bool trial(const wefm_cad::CadFace& f, double h, double s, std::string& why, boo
 // intersects itself") with min Lo lambda kLambdaFloor.
 bool library_takes(const wefm_cad::CadFace& f, double h, std::string& why) {
   bool retry = false;
-  if (trial(f, h, 0.0, why, retry)) return true;
+  if (trial(f, h, kConformalS, why, retry)) return true;
   return retry && trial(f, h, std::numeric_limits<double>::quiet_NaN(), why, retry);
 }
 
