@@ -82,32 +82,27 @@ constexpr double kEps = std::numeric_limits<double>::epsilon() * 0.5;
 // Error bound coefficient chosen generously above Shewchuk's (10+96e)e (orient2d's is in the header).
 constexpr double kIncircleBound = 12.0 * kEps;
 
-// x0 y0 - x1 y1 of two-term differences: at most 2 * 8 terms.
+// x0 y0 + sign x1 y1 of two-term differences: at most 2 * 8 terms.
 using Cross = Expansion<2 * kProductTerms(2, 2)>;
-Cross cross(const Expansion<2>& x0, const Expansion<2>& y0, const Expansion<2>& x1, const Expansion<2>& y1) {
+Cross two_products(const Expansion<2>& x0, const Expansion<2>& y0, const Expansion<2>& x1, const Expansion<2>& y1, double sign) {
   Cross out;
   add_product(out, x0, y0, 1.0);
-  add_product(out, x1, y1, -1.0);
+  add_product(out, x1, y1, sign);
   return out;
 }
 
 double orient_exact(const P2& a, const P2& b, const P2& c) {
-  return sign_of(cross(diff(a.x(), c.x()), diff(b.y(), c.y()), diff(a.y(), c.y()), diff(b.x(), c.x())));
+  return sign_of(two_products(diff(a.x(), c.x()), diff(b.y(), c.y()), diff(a.y(), c.y()), diff(b.x(), c.x()), -1.0));
 }
 
 double incircle_exact(const P2& a, const P2& b, const P2& c, const P2& d) {
   const Expansion<2> adx = diff(a.x(), d.x()), ady = diff(a.y(), d.y());
   const Expansion<2> bdx = diff(b.x(), d.x()), bdy = diff(b.y(), d.y());
   const Expansion<2> cdx = diff(c.x(), d.x()), cdy = diff(c.y(), d.y());
-  // |p - d|^2 = dx dx - (-dy) dy.
-  auto lift = [](const Expansion<2>& dx, const Expansion<2>& dy) {
-    Cross out;
-    add_product(out, dx, dx, 1.0);
-    add_product(out, dy, dy, 1.0);
-    return out;
-  };
-  const Cross alift = lift(adx, ady), blift = lift(bdx, bdy), clift = lift(cdx, cdy);
-  const Cross bc = cross(bdx, cdy, bdy, cdx), ca = cross(cdx, ady, cdy, adx), ab = cross(adx, bdy, ady, bdx);
+  const Cross alift = two_products(adx, adx, ady, ady, 1.0), blift = two_products(bdx, bdx, bdy, bdy, 1.0),
+              clift = two_products(cdx, cdx, cdy, cdy, 1.0);
+  const Cross bc = two_products(bdx, cdy, bdy, cdx, -1.0), ca = two_products(cdx, ady, cdy, adx, -1.0),
+              ab = two_products(adx, bdy, ady, bdx, -1.0);
   // Three products of 16-term expansions: 3 * 2 * 16 * 16 terms at most (12 KB on the stack).
   Expansion<3 * kProductTerms(16, 16)> det;
   add_product(det, alift, bc, 1.0);
