@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstring>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -40,6 +41,37 @@ void set_thread_error(const std::string& message);
 // A core error's message, with its remedy (wefm::Remedy) named in this API's calls and fields.
 std::string api_message(const wefm::Error& e);
 
+// The C status of a core error.
+constexpr wefm_status status_of(wefm::Errc code) noexcept {
+  switch (code) {
+    case wefm::Errc::invalid_argument: return WEFM_ERROR_INVALID_ARGUMENT;
+    case wefm::Errc::out_of_range: return WEFM_ERROR_OUT_OF_RANGE;
+    case wefm::Errc::invalid_state: return WEFM_ERROR_INVALID_STATE;
+    case wefm::Errc::invalid_mesh: return WEFM_ERROR_INVALID_MESH;
+    case wefm::Errc::invalid_topology: return WEFM_ERROR_INVALID_TOPOLOGY;
+    case wefm::Errc::invalid_constraint: return WEFM_ERROR_INVALID_CONSTRAINT;
+    case wefm::Errc::singular: return WEFM_ERROR_SINGULAR;
+    case wefm::Errc::not_positive_definite: return WEFM_ERROR_NOT_POSITIVE_DEFINITE;
+    case wefm::Errc::not_converged: return WEFM_ERROR_NOT_CONVERGED;
+    case wefm::Errc::cancelled: return WEFM_ERROR_CANCELLED;
+    case wefm::Errc::out_of_memory: return WEFM_ERROR_OUT_OF_MEMORY;
+    case wefm::Errc::io: return WEFM_ERROR_IO;
+    case wefm::Errc::unsupported: return WEFM_ERROR_UNSUPPORTED;
+    case wefm::Errc::internal: return WEFM_ERROR_INTERNAL;
+  }
+  return WEFM_ERROR_INTERNAL;
+}
+
+// A failure that only this API knows (a caller's buffer too short): its status as it is.
+class ApiError : public std::runtime_error {
+ public:
+  ApiError(wefm_status status, const std::string& message) : std::runtime_error(message), status_(status) {}
+  wefm_status status() const noexcept { return status_; }
+
+ private:
+  wefm_status status_;
+};
+
 // Runs `body`; maps exceptions to statuses and stores the message on `err` (or thread-locally).
 template <class F>
 wefm_status guarded(std::string* err, F&& body) noexcept {
@@ -50,7 +82,11 @@ wefm_status guarded(std::string* err, F&& body) noexcept {
     const std::string m = api_message(e);
     if (err) *err = m;
     set_thread_error(m);
-    return static_cast<wefm_status>(static_cast<int>(e.code()));
+    return status_of(e.code());
+  } catch (const ApiError& e) {
+    if (err) *err = e.what();
+    set_thread_error(e.what());
+    return e.status();
   } catch (const std::bad_alloc&) {
     const char* m = "out of memory";
     if (err) *err = m;
@@ -135,7 +171,7 @@ void copy_out_records(std::size_t items, std::size_t width, T* buffer, std::int6
   *count = static_cast<std::int64_t>(items * width);
   if (!buffer) return;
   if (capacity < *count)
-    throw wefm::Error(static_cast<wefm::Errc>(WEFM_ERROR_BUFFER_TOO_SMALL), "buffer too small: capacity " + std::to_string(capacity) + " < " + std::to_string(*count) + " elements needed");
+    throw ApiError(WEFM_ERROR_BUFFER_TOO_SMALL, "buffer too small: capacity " + std::to_string(capacity) + " < " + std::to_string(*count) + " elements needed");
   for (std::size_t i = 0; i < items; ++i) get(i, buffer + i * width);
 }
 

@@ -7,22 +7,23 @@
 
 namespace wefm {
 
-// Values equal the C API's wefm_status codes so the boundary translation is a cast.
+// What went wrong, in the core's terms. An API chooses its own codes for these (the C API's
+// wefm_status: capi/src/handles.hpp, status_of), so the numbers here carry no meaning.
 enum class Errc : int {
-  invalid_argument = 2,
-  out_of_range = 3,
-  invalid_state = 5,
-  invalid_mesh = 6,
-  invalid_topology = 7,
-  invalid_constraint = 8,
-  singular = 9,
-  not_positive_definite = 10,
-  not_converged = 11,
-  cancelled = 12,
-  out_of_memory = 13,
-  io = 14,
-  unsupported = 15,
-  internal = 99,
+  invalid_argument,
+  out_of_range,
+  invalid_state,
+  invalid_mesh,
+  invalid_topology,
+  invalid_constraint,
+  singular,
+  not_positive_definite,
+  not_converged,
+  cancelled,
+  out_of_memory,
+  io,
+  unsupported,
+  internal,
 };
 
 // What the caller can do about an error, where the message alone cannot name it: the core does not
