@@ -4,7 +4,6 @@
 #include <string>
 
 #include "handles.hpp"
-#include "wefm/core/sys/atomic_file.hpp"
 #include "wefm/core/meshing/domain_mesh.hpp"
 
 struct wefm_domain_mesh {
@@ -150,27 +149,7 @@ WEFM_API wefm_status wefm_domain_mesh_get_report(const wefm_domain_mesh* mesh, w
 WEFM_API wefm_status wefm_domain_mesh_write_obj(const wefm_domain_mesh* mesh, const char* path) {
   WEFM_REQUIRE(mesh, "wefm_domain_mesh_write_obj");
   WEFM_REQUIRE(path, "wefm_domain_mesh_write_obj");
-  return guarded(nullptr, [&] {
-    // The text is made first and the file replaced whole (AtomicFile): a full disk or a failed
-    // close is WEFM_ERROR_IO and leaves the previous file.
-    wefm::AtomicFile f(path);
-    std::string text;
-    char line[128];
-    auto put = [&](int n) { text.append(line, static_cast<size_t>(n)); };
-    const auto& m = mesh->mesh;
-    put(std::snprintf(line, sizeof line, "# wefm domain mesh: %zu nodes, %zu elements\n", m.xyz.size(),
-                      m.elements.size() / static_cast<size_t>(m.nodes_per_element)));
-    for (const auto& p : m.xyz) put(std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z()));
-    for (const auto& p : m.uv) put(std::snprintf(line, sizeof line, "vt %.17g %.17g\n", p.x(), p.y()));
-    const size_t npe = static_cast<size_t>(m.nodes_per_element);
-    for (size_t e = 0; e < m.elements.size(); e += npe) {
-      text += 'f';
-      for (size_t k = 0; k < npe; ++k) put(std::snprintf(line, sizeof line, " %d/%d", m.elements[e + k] + 1, m.elements[e + k] + 1));
-      text += '\n';
-    }
-    f.write(text.data(), text.size());
-    f.commit();
-  });
+  return guarded(nullptr, [&] { wefm::meshing::write_obj(path, mesh->mesh); });
 }
 
 }

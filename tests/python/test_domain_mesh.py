@@ -21,6 +21,13 @@ def test_transfinite_square_is_exact(tmp_path):
             text = (tmp_path / "sq.obj").read_text().splitlines()
             assert sum(l.startswith("v ") for l in text) == 81
             assert sum(l.startswith("f ") and len(l.split()) == 5 for l in text) == 64
+            # The numbers read back to the very doubles of the mesh, and each corner's v and vt agree.
+            v = np.array([[float(t) for t in l.split()[1:]] for l in text if l.startswith("v ")])
+            vt = np.array([[float(t) for t in l.split()[1:]] for l in text if l.startswith("vt ")])
+            assert np.array_equal(v, dm.xyz) and np.array_equal(vt, dm.uv)
+            corners = [c.split("/") for l in text if l.startswith("f ") for c in l.split()[1:]]
+            assert all(a == b for a, b in corners)
+            assert np.array_equal(np.array([int(a) - 1 for a, _ in corners]).reshape(-1, 4), el)
 
 
 def test_free_mesh_nodes_lie_on_the_surface_and_map_back():

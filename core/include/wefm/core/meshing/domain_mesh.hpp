@@ -1,5 +1,6 @@
 #pragma once
 // A mesh of the solved domain and its image in 3D (METHOD §9): the entry point of meshing.
+#include <string>
 #include <vector>
 
 #include "wefm/core/meshing/boundary.hpp"
@@ -30,5 +31,9 @@ struct DomainMesh {
 // discretisation by 0.1, node insertion up to 0.8, smoothing up to 0.95, 1 when done.
 DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& options,
                        const EdgeNodes& given = {}, const MeshControl& control = {});
+
+// OBJ of a domain mesh: v (3D) and vt (UV) per node, f v/vt per element (triangles or quads),
+// replaced whole or not at all. Throws Error(io) naming the file.
+void write_obj(const std::string& path, const DomainMesh& mesh);
 
 }  // namespace wefm::meshing
