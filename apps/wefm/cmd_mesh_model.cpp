@@ -68,7 +68,7 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"deflection", 0, "D", "BRepMesh linear deflection as a fraction of the bounding-box diagonal", defl, false},
       {"angular-deflection", 0, "RAD", "BRepMesh angular deflection in radians", ang, false},
       {"no-local-size", 0, "", "use H on every face, also on faces narrower than H", "", false},
-      {"no-merge-faces", 0, "", "mesh every B-rep face on its own (default: a face narrower than H / 100 or with a "
+      {"no-merge-faces", 0, "", "mesh every B-rep face on its own (default: a face narrower than H / 30 or with a "
                                 "corner under 12 degrees is meshed together with its smoothest neighbour, its "
                                 "triangles still written as its own)", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; a face whose opposite sides get different node "

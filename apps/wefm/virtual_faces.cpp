@@ -19,16 +19,20 @@ namespace wefm_cli {
 
 namespace {
 
-// A face narrower than h / this (2 area / perimeter) is merged. Wider ones mesh well on their own:
-// their local size and the edges' shrinking towards narrow parts (down to h / 32, cad_edge_nodes)
-// give triangles across them. Measured over the 59 cad-more models at h = 1/40 of the diagonal
-// without merging: of the faces between h / 100 and h / 20 wide, 18 of 2,462 had a triangle with Lo
-// lambda below 0.3; of those narrower than h / 100, 91 of 132.
-constexpr double kNarrowRatio = 100;
+// A face narrower than h / this (2 area / perimeter) is merged. A face narrower than h / kNeedleRatio
+// keeps slivers on its own: over the 59 cad-more models at h = 1/40 of the diagonal without merging,
+// 91 of the 132 had a triangle with Lo lambda below 0.3. Wider faces mesh well on their own (18 of
+// 2,462 between h / 100 and h / 20 had one), but only at a cost: their local size and the edges'
+// shrinking towards them (down to h / 32, cad_edge_nodes) refine their long edges, and the
+// neighbours grade back up from those. Merging the faces up to h / 30 wide with their smoothest
+// neighbour halves that (docs/PERFORMANCE.md); up to h / 20 it also merged the touching faces of an
+// assembly's volumes differently and folded them onto each other at the weld.
+constexpr double kNarrowRatio = 30;
+constexpr double kNeedleRatio = 100;
 // A narrow face is never merged across an edge where the facet normals of the two faces turn by
 // more than this: a 45-degree chamfer merges with either face, the right-angle edge of a box does
-// not. A triangle spanning a strip of width w < h / 100 at such a kink leaves the surface by at most
-// w sin(25 deg) < h / 200.
+// not. A triangle spanning a strip of width w < h / 30 at such a kink leaves the surface by at most
+// w sin(25 deg) < h / 70.
 constexpr double kSharpDegrees = 50;
 // A face merged for a sharp corner is wide: triangles of size h straddle the edge left out, and
 // leave the surface by up to h / 2 sin(turn / 2), h / 8 at this turn: the chord deviation that the
@@ -297,6 +301,41 @@ std::map<long long, std::vector<size_t>> edge_users(const std::vector<wefm_cad::
   return out;
 }
 
+// Per face (by position): another face lying on it, or -1. Faces whose tessellations have the same
+// area and bounding box within `tol` are taken to lie on each other: the touching faces of an
+// assembly's volumes, or a body the file holds twice.
+std::vector<long> coincident_faces(const std::vector<wefm_cad::CadFace>& faces, double tol) {
+  struct Box {
+    double area;
+    std::array<double, 6> box;
+    size_t face;
+  };
+  std::vector<Box> boxes;
+  for (size_t i = 0; i < faces.size(); ++i) {
+    const wefm_cad::CadFace& f = faces[i];
+    if (!f.error.empty() || f.xyz.empty()) continue;
+    Box b{wefm_cad::face_area(f), {}, i};
+    for (int k = 0; k < 3; ++k) b.box[k] = b.box[k + 3] = f.xyz[static_cast<size_t>(k)];
+    for (size_t v = 0; v + 2 < f.xyz.size(); v += 3)
+      for (size_t k = 0; k < 3; ++k) {
+        b.box[k] = std::min(b.box[k], f.xyz[v + k]);
+        b.box[k + 3] = std::max(b.box[k + 3], f.xyz[v + k]);
+      }
+    boxes.push_back(b);
+  }
+  std::sort(boxes.begin(), boxes.end(), [](const Box& a, const Box& b) { return a.area < b.area; });
+  std::vector<long> twin(faces.size(), -1);
+  for (size_t a = 0; a < boxes.size(); ++a)
+    for (size_t b = a + 1; b < boxes.size() && boxes[b].area - boxes[a].area <= tol * std::sqrt(boxes[b].area); ++b) {
+      bool same = true;
+      for (int k = 0; k < 6 && same; ++k) same = std::abs(boxes[a].box[k] - boxes[b].box[k]) <= tol;
+      if (!same) continue;
+      twin[boxes[a].face] = static_cast<long>(boxes[b].face);
+      twin[boxes[b].face] = static_cast<long>(boxes[a].face);
+    }
+  return twin;
+}
+
 struct Candidate {
   size_t neighbour;
   std::vector<std::pair<size_t, size_t>> shared;  // edge index in the neighbour, in the narrow face
@@ -383,7 +422,7 @@ class Merger {
  public:
   Merger(wefm_cad::CadModel& model, std::vector<double>& sizes, double h)
       : faces_(model.faces), sizes_(sizes), tol_(1e-7 * model.bbox_diagonal), h_(h), alive_(faces_.size(), 1),
-        facet_face_(faces_.size()) {
+        facet_face_(faces_.size()), twin_(coincident_faces(faces_, 1e-6 * model.bbox_diagonal)) {
     users_ = edge_users(faces_, alive_);
   }
   bool alive(size_t i) const { return alive_[i] && faces_[i].error.empty(); }
@@ -395,7 +434,16 @@ class Merger {
   // slivers only moved); the merged face keeps the neighbour's size (the smaller of the
   // two multiplied the triangles of a whole model several times over for a few absorbed corners).
   // Records the merge, or why none was made.
-  bool merge(size_t i, const std::set<long long>& across, double max_turn, double width, const std::string& reason) {
+  // With `keep_twins`, a face lying on another face neither merges nor absorbs (faces wider than
+  // h / kNeedleRatio, which mesh well enough on their own): merged, two faces that lie on each other
+  // may no longer be meshed alike, and the weld folds them onto each other.
+  bool merge(size_t i, const std::set<long long>& across, double max_turn, double width, const std::string& reason,
+             bool keep_twins = false) {
+    if (keep_twins && twin_[i] >= 0) {
+      vt_.merges.push_back({faces_[i].index, 0, width, 0, {}, reason + "; kept: it lies on face " + std::to_string(faces_[static_cast<size_t>(twin_[i])].index) +
+                                                                  ", which is meshed alike only while neither is merged"});
+      return false;
+    }
     std::string why = "no neighbour across an edge turning by at most " + std::to_string(static_cast<int>(max_turn)) + " degrees";
     for (const Candidate& c : neighbours(faces_, i, users_, tol_)) {
       if (c.dihedral > max_turn) continue;
@@ -403,6 +451,10 @@ class Merger {
       const size_t j = c.neighbour;
       if (narrow(j)) {
         why = "its smooth neighbours are narrow too";
+        continue;
+      }
+      if (keep_twins && twin_[j] >= 0) {
+        why = "its smooth neighbours lie on other faces, meshed alike only while not merged";
         continue;
       }
       wefm_cad::CadFace merged;
@@ -454,6 +506,9 @@ class Merger {
   double tol_, h_;
   std::vector<char> alive_;
   std::vector<std::vector<int>> facet_face_;
+  // Faces lying on another face keep their own mesh: merged, the two would no longer be meshed
+  // alike and the weld would fold them onto each other.
+  std::vector<long> twin_;
   std::map<long long, std::vector<size_t>> users_;
   VirtualTopology vt_;
 };
@@ -474,7 +529,7 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
     if (!(w < h / kNarrowRatio)) continue;
     char reason[96];
     std::snprintf(reason, sizeof reason, "narrow: width %.3g below h / %g", w, kNarrowRatio);
-    merger.merge(i, {}, kSharpDegrees, w, reason);
+    merger.merge(i, {}, kSharpDegrees, w, reason, w >= h / kNeedleRatio);
   }
   for (size_t i = 0; i < n; ++i) {
     if (!merger.alive(i)) continue;

@@ -39,7 +39,7 @@ struct VirtualTopology {
   std::vector<std::vector<int>> facet_face;
 };
 
-// Replaces the faces of `model` narrower than h / 100 (2 area / perimeter), and those with a corner
+// Replaces the faces of `model` narrower than h / 30 (2 area / perimeter), and those with a corner
 // under 12 degrees, by their merge with a neighbour (see virtual_faces.cpp for the rule); the faces keep their order. `face_sizes` (one per
 // face) follows: a merged face keeps the size of the face that absorbed the narrow one, its own
 // before the merge (the narrow facets' curvature and width would otherwise shrink it).

@@ -3,11 +3,15 @@
 (virtual topology, issue 28 item 4: a quality floor on narrow faces), at 1/40 of the diagonal.
 
 fillet_chamfer_box.brep (tests/cad/data): a 10 x 6 x 4 box with one edge rounded at radius 0.003 and
-another chamfered at 0.0007, about h / 70 and h / 300 wide at h = 1/40 of the diagonal (the fillet
-meshes well on its own and is left alone, the chamfer does not and is merged); made with Gmsh 4.8
+another chamfered at 0.0007, about h / 70 and h / 300 wide at h = 1/40 of the diagonal (both are
+merged: the chamfer keeps slivers on its own, the fillet refines its neighbours); made with Gmsh 4.8
 (OpenCASCADE factory):
     Box(1) = {0, 0, 0, 10, 6, 4}; f() = Fillet{1}{1}{0.003}; c() = Chamfer{f(0)}{12}{6}{0.0007};
     Save "fillet_chamfer_box.brep";
+fillet_chamfer_box_twice.brep: the same box held twice at the same place (Gmsh:
+    d() = Translate{0, 0, 0}{ Duplicata{ Volume{c(0)}; } }; before the Save), every face lying on its
+copy. The chamfers (narrower than h / 100) are still merged, alike in both copies; the fillets, which
+mesh well enough on their own, are kept so that a face and its copy stay meshed alike.
 
 Checked: with --no-merge-faces the narrow faces keep slivers (min Lo lambda below 0.3: the model does
 exercise the property); by default the run exits 0, min lambda is at least 0.3, the mesh is closed
@@ -15,7 +19,7 @@ exercise the property); by default the run exits 0, min lambda is at least 0.3, 
 triangle is in the group of a face of the model, and the report names each merge (the face, the face
 it was merged into, the shared model edges, why) on both the merge list and the receiving face.
 
-usage: merge_faces_test.py WEFM MODEL.brep
+usage: merge_faces_test.py WEFM MODEL.brep TWICE.brep
 """
 import sys
 import tempfile
@@ -29,8 +33,32 @@ def run(wefm, model, tmp, name, *extra):
     return report, msh
 
 
+def check_twice(wefm, model, tmp):
+    r, msh = run(wefm, model, tmp, "twice")
+    c = r["conformity"]
+    assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0, c
+    h = r["size"]
+    merged = {m["face"]: m for m in r["merged_faces"]}
+    needles = [m for m in merged.values() if m["width"] < h / 100]
+    wider = [m for m in merged.values() if h / 100 <= m["width"] < h / 30]
+    assert len(needles) == 2 and len(wider) == 2, merged
+    for m in needles:
+        assert m["merged_into"], m
+    for m in wider:
+        assert m["merged_into"] is None and "lies on face" in m["reason"], m
+        other = int(m["reason"].split("lies on face ")[1].split(",")[0])
+        assert other in merged and other != m["face"] and f"lies on face {m['face']}," in merged[other]["reason"], (m, merged[other])
+    faces, _ = read_msh_faces(msh)
+    copies = [f for f in r["faces"] if f["mesh_of_face"]]
+    assert len(copies) == len(r["faces"]) // 2, [(f["face"], f["mesh_of_face"]) for f in r["faces"]]
+    for f in copies:
+        assert len(faces[f["face"]]) == len(faces[f["mesh_of_face"]]), f
+    print(f"twice: min lambda {r['lambda_min']:.3f}; needles merged in both copies, "
+          + ", ".join(f"f{m['face']} kept" for m in wider))
+
+
 def main():
-    wefm, model = sys.argv[1:3]
+    wefm, model, twice = sys.argv[1:4]
     with tempfile.TemporaryDirectory() as tmp:
         strict, _ = run(wefm, model, tmp, "strict", "--no-merge-faces")
         assert strict["merged_faces"] == [], strict["merged_faces"]
@@ -55,6 +83,8 @@ def main():
             assert m["face"] in kept[m["merged_into"]]["merged_faces"], (m, kept[m["merged_into"]])
         print(f"min lambda {strict['lambda_min']:.3f} -> {r['lambda_min']:.3f}; merged "
               + ", ".join(f"f{m['face']} into f{m['merged_into']} ({m['dihedral_degrees']:.0f} deg)" for m in merges))
+        assert len(merges) == 2, f"expected the fillet and the chamfer merged: {merges}"
+        check_twice(wefm, twice, tmp)
     return 0
 
 
