@@ -1,147 +1,52 @@
 #include "output_file.hpp"
 
-#include <atomic>
-#include <cerrno>
-#include <climits>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include "exit_codes.hpp"
 #include "stop.hpp"
 
 namespace wefm_cli {
 
-namespace {
-
-std::atomic<unsigned> g_counter{0};
-
-std::string directory_of(const std::string& path) {
-  const size_t slash = path.rfind('/');
-  if (slash == std::string::npos) return ".";
-  return slash == 0 ? "/" : path.substr(0, slash);
-}
-
-std::string file_name_of(const std::string& path) {
-  const size_t slash = path.rfind('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-// The file that ends up replaced: a link to a regular file is followed, so the link survives.
-std::string resolve_target(const std::string& path) {
-  struct stat l;
-  if (lstat(path.c_str(), &l) != 0 || !S_ISLNK(l.st_mode)) return path;
-  char buf[PATH_MAX];
-  if (!realpath(path.c_str(), buf)) return path;  // a dangling link: rename replaces the link itself
-  return buf;
-}
-
-// The rename is durable once the folder's entry is on disk. Best effort: the file is already whole
-// in place, and some file systems refuse fsync on a folder.
-void sync_directory(const std::string& target) {
-  const int fd = ::open(directory_of(target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  (void)fsync(fd);
-  ::close(fd);
-}
-
-}  // namespace
-
-bool OutputFile::fail(const std::string& what, int err) {
-  if (!failed_) {
-    failed_ = true;
-    error_ = path_ + ": " + what + (err ? std::string(": ") + std::strerror(err) : std::string());
-  }
+bool OutputFile::fail() {
+  if (error_.empty()) error_ = path_ + ": " + file_.error();
   return false;
 }
 
 bool OutputFile::open(const std::string& path) {
   discard();
   path_ = path;
-  failed_ = stopped_ = direct_ = false;
+  stopped_ = false;
   error_.clear();
-  if (path.empty()) return fail("empty file name", 0);
-  target_ = resolve_target(path);
-  struct stat st;
-  bool replaces = false;
-  if (stat(target_.c_str(), &st) == 0) {
-    if (S_ISDIR(st.st_mode)) return fail("is a directory", 0);
-    direct_ = !S_ISREG(st.st_mode);
-    replaces = true;
-  }
-  if (direct_) {
-    fd_ = ::open(target_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC | O_NOCTTY);
-    return fd_ >= 0 || fail("cannot open", errno);
-  }
-  char suffix[64];
-  std::snprintf(suffix, sizeof suffix, ".tmp-%ld-%u", static_cast<long>(getpid()), g_counter.fetch_add(1));
-  temp_ = directory_of(target_) + "/." + file_name_of(target_) + suffix;
-  slot_ = register_temporary(temp_);  // before it exists, so that no moment leaves it unregistered
-  fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOCTTY, 0666);
-  if (fd_ < 0) {
-    const int err = errno;
-    unregister_temporary(slot_);
-    slot_ = -1;
-    temp_.clear();
-    return fail("cannot create", err);
-  }
-  // A file that is replaced keeps its permissions (a read-only-for-others result stays so).
-  if (replaces && fchmod(fd_, st.st_mode & 07777) != 0) return fail("cannot set the permissions of the replacement", errno);
-  return true;
+  if (!file_.prepare(path)) return fail();
+  // Registered before it exists, so that no moment leaves it unregistered.
+  if (!file_.temporary().empty()) slot_ = register_temporary(file_.temporary());
+  if (file_.create()) return true;
+  unregister_temporary(slot_);
+  slot_ = -1;
+  return fail();
 }
 
 bool OutputFile::write(const char* data, size_t size) {
-  if (failed_) return false;
-  if (fd_ < 0) return fail("not open", EBADF);
-  while (size > 0) {
-    if (interrupted()) {
-      stopped_ = true;
-      return fail("not written: " + stop_reason(), 0);
-    }
-    const ssize_t n = ::write(fd_, data, size);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return fail("write failed", errno);
-    }
-    if (n == 0) return fail("write failed", EIO);
-    data += n;
-    size -= static_cast<size_t>(n);
+  if (file_.failed()) return false;
+  if (interrupted()) {
+    stopped_ = true;
+    file_.fail("not written: " + stop_reason());
+    return fail();
   }
-  return true;
+  return file_.write(data, size) || fail();
 }
 
 bool OutputFile::commit() {
-  if (!failed_ && fd_ < 0) fail("not open", EBADF);
-  if (!failed_ && interrupted()) {
+  if (!file_.failed() && interrupted()) {
     stopped_ = true;
-    fail("not written: " + stop_reason(), 0);
+    file_.fail("not written: " + stop_reason());
   }
-  if (!failed_ && !direct_ && fsync(fd_) != 0) fail("write failed (fsync)", errno);
-  if (fd_ >= 0) {
-    const int rc = ::close(fd_);
-    fd_ = -1;
-    if (rc != 0 && !failed_) fail("write failed (close)", errno);
-  }
-  if (!failed_ && !direct_ && std::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot replace", errno);
-  if (failed_) {
-    discard();
-    return false;
-  }
+  const bool ok = file_.commit();
   unregister_temporary(slot_);
   slot_ = -1;
-  temp_.clear();
-  if (!direct_) sync_directory(target_);
-  return true;
+  return ok || fail();
 }
 
 void OutputFile::discard() {
-  if (fd_ >= 0) ::close(fd_);
-  fd_ = -1;
-  if (!temp_.empty()) unlink(temp_.c_str());
-  temp_.clear();
+  file_.discard();
   unregister_temporary(slot_);
   slot_ = -1;
 }

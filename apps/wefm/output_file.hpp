@@ -1,17 +1,15 @@
 #pragma once
-// Every file the tool writes goes through OutputFile. The bytes go to a temporary file in the
-// target's folder (unique name, O_EXCL); every write, the fsync and the close are checked, and
-// rename() then puts the file in place. A failed, cancelled or timed-out write removes the
-// temporary and leaves the previous file as it was; a second Ctrl-C removes it from the signal
-// handler (stop.hpp). Only a SIGKILL can leave a temporary behind, never a partial target.
-//
-// A target that exists and is not a regular file (/dev/null, /dev/full, a FIFO) cannot be replaced
-// by rename: it is written in place, still checking every write and the close, so /dev/full fails.
-// A symbolic link to a regular file is followed: the file it names is replaced, the link stays.
-// A replaced file keeps its permission bits; the folder is synced after the rename.
+// Every file the tool writes goes through OutputFile: common/replace_file (a temporary in the
+// target's folder, checked writes, fsync, rename; special files such as /dev/null written in place;
+// links followed; permissions kept), plus the tool's own policy. A stop request (Ctrl-C, SIGTERM, a
+// time limit) fails the write and leaves the previous file; the temporary is on the signal-safe
+// list of stop.hpp from before it exists, so a second Ctrl-C removes it from the signal handler.
+// Only a SIGKILL can leave a temporary behind, never a partial target.
 #include <cstddef>
 #include <string>
 #include <string_view>
+
+#include "wefm/common/replace_file.hpp"
 
 namespace wefm_cli {
 
@@ -36,14 +34,10 @@ class OutputFile {
   bool stopped() const { return stopped_; }
 
  private:
-  bool fail(const std::string& what, int err);
-  std::string path_;    // as given, for messages
-  std::string target_;  // what is replaced (symbolic links resolved)
-  std::string temp_;
-  int fd_ = -1;
+  bool fail();
+  std::string path_;  // as given, for messages
+  wefm_common::ReplaceFile file_;
   int slot_ = -1;
-  bool direct_ = false;
-  bool failed_ = false;
   bool stopped_ = false;
   std::string error_;
 };

@@ -1,6 +1,7 @@
 # The core's folder rule (core/CMakeLists.txt): a file in core/src/F/ or core/include/wefm/core/F/
 # includes core headers only from F itself and the folders F depends on, never the C API, and every
-# core file lies in a declared folder.
+# core file lies in a declared folder. Any folder may include common/ (wefm/common/), which lies
+# below the core and includes nothing of the project's (checked too, in <core>/../common).
 #
 #   cmake -DCORE_DIR=<core> -DLAYERS="sys:|linalg:sys|..." -P check_layers.cmake
 #   cmake -DSELF_TEST=<scratch folder> -P check_layers.cmake
@@ -41,7 +42,9 @@ function(check_core_layers core_dir layers out)
     file(STRINGS ${core_dir}/${rel} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<]wefm/")
     foreach(line IN LISTS lines)
       string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<]([^\">]*)[\">].*" "\\1" header "${line}")
-      if(NOT header MATCHES "^wefm/core/")
+      if(header MATCHES "^wefm/common/")
+        continue()
+      elseif(NOT header MATCHES "^wefm/core/")
         list(APPEND errors "${rel}: includes ${header}, but the core never includes the C API")
       elseif(header MATCHES "^wefm/core/([^/]+)/")
         if(NOT CMAKE_MATCH_1 IN_LIST allowed_${folder})
@@ -56,19 +59,39 @@ function(check_core_layers core_dir layers out)
   set(${out} "${errors}" PARENT_SCOPE)
 endfunction()
 
+# Sets ${out} to the includes of the project's headers other than its own under common_dir.
+function(check_common common_dir out)
+  set(errors "")
+  file(GLOB_RECURSE files RELATIVE ${common_dir} ${common_dir}/*.cpp ${common_dir}/*.hpp ${common_dir}/*.h)
+  foreach(rel IN LISTS files)
+    file(STRINGS ${common_dir}/${rel} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<]wefm/")
+    foreach(line IN LISTS lines)
+      string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<]([^\">]*)[\">].*" "\\1" header "${line}")
+      if(NOT header MATCHES "^wefm/common/")
+        list(APPEND errors "common/${rel}: includes ${header}, but common includes nothing of the project's")
+      endif()
+    endforeach()
+  endforeach()
+  set(${out} "${errors}" PARENT_SCOPE)
+endfunction()
+
 if(SELF_TEST)
   set(t ${SELF_TEST}/core_layers_fixture)
   file(REMOVE_RECURSE ${t})
   file(WRITE ${t}/include/wefm/core/low/a.hpp "#include \"wefm/core/low/b.hpp\"\n")
-  file(WRITE ${t}/include/wefm/core/low/b.hpp "#pragma once\n")
+  file(WRITE ${t}/include/wefm/core/low/b.hpp "#pragma once\n#include \"wefm/common/replace_file.hpp\"\n")
+  file(WRITE ${t}/common/include/wefm/common/x.hpp "#include \"wefm/common/y.hpp\"\n#include \"wefm/core/low/b.hpp\"\n")
   file(WRITE ${t}/src/low/a.cpp "#include \"wefm/core/low/a.hpp\"\n#include \"wefm/core/high/c.hpp\"\n")
   file(WRITE ${t}/src/high/c.cpp "#include \"wefm/core/low/a.hpp\"\n#include <wefm/wefm.h>\n")
   file(WRITE ${t}/src/stray.cpp "\n")
   file(WRITE ${t}/src/other/d.cpp "\n")
   file(WRITE ${t}/src/high/e.cpp "  #  include \"wefm/core/flat.hpp\"\n")
   check_core_layers(${t} "low:;high:low" errors)
+  check_common(${t}/common common_errors)
+  list(APPEND errors ${common_errors})
   file(REMOVE_RECURSE ${t})
   set(expected
+      "common/include/wefm/common/x.hpp: includes wefm/core/low/b.hpp, but common includes nothing of the project's"
       "src/high/c.cpp: includes wefm/wefm.h, but the core never includes the C API"
       "src/high/e.cpp: includes wefm/core/flat.hpp, which is not inside a folder of the core"
       "src/low/a.cpp: includes wefm/core/high/c.hpp, but folder low may include only low"
@@ -77,9 +100,9 @@ if(SELF_TEST)
   list(SORT errors)
   if(NOT errors STREQUAL expected)
     string(REPLACE ";" "\n  " got "${errors}")
-    message(FATAL_ERROR "check_layers self-test: expected the five planted faults, got:\n  ${got}")
+    message(FATAL_ERROR "check_layers self-test: expected the six planted faults, got:\n  ${got}")
   endif()
-  message(STATUS "check_layers self-test: the five planted faults found")
+  message(STATUS "check_layers self-test: the six planted faults found")
   return()
 endif()
 
@@ -88,6 +111,8 @@ if(NOT CORE_DIR OR NOT LAYERS)
 endif()
 string(REPLACE "|" ";" layers "${LAYERS}")
 check_core_layers(${CORE_DIR} "${layers}" errors)
+check_common(${CORE_DIR}/../common common_errors)
+list(APPEND errors ${common_errors})
 if(errors)
   list(LENGTH errors n)
   string(REPLACE ";" "\n  " text "${errors}")
