@@ -12,6 +12,7 @@
 
 #include "cad_edge_nodes.hpp"
 #include "cad_wefm.hpp"
+#include "coincident_faces.hpp"
 #include "conformal_first.hpp"
 #include "owned.hpp"
 
@@ -301,37 +302,14 @@ std::map<long long, std::vector<size_t>> edge_users(const std::vector<wefm_cad::
   return out;
 }
 
-// Per face (by position): another face lying on it, or -1. Faces whose tessellations have the same
-// area and bounding box within `tol` are taken to lie on each other: the touching faces of an
-// assembly's volumes, or a body the file holds twice.
-std::vector<long> coincident_faces(const std::vector<wefm_cad::CadFace>& faces, double tol) {
-  struct Box {
-    double area;
-    std::array<double, 6> box;
-    size_t face;
-  };
-  std::vector<Box> boxes;
-  for (size_t i = 0; i < faces.size(); ++i) {
-    const wefm_cad::CadFace& f = faces[i];
-    if (!f.error.empty() || f.xyz.empty()) continue;
-    Box b{wefm_cad::face_area(f), {}, i};
-    for (int k = 0; k < 3; ++k) b.box[k] = b.box[k + 3] = f.xyz[static_cast<size_t>(k)];
-    for (size_t v = 0; v + 2 < f.xyz.size(); v += 3)
-      for (size_t k = 0; k < 3; ++k) {
-        b.box[k] = std::min(b.box[k], f.xyz[v + k]);
-        b.box[k + 3] = std::max(b.box[k + 3], f.xyz[v + k]);
-      }
-    boxes.push_back(b);
-  }
-  std::sort(boxes.begin(), boxes.end(), [](const Box& a, const Box& b) { return a.area < b.area; });
-  std::vector<long> twin(faces.size(), -1);
-  for (size_t a = 0; a < boxes.size(); ++a)
-    for (size_t b = a + 1; b < boxes.size() && boxes[b].area - boxes[a].area <= tol * std::sqrt(boxes[b].area); ++b) {
-      bool same = true;
-      for (int k = 0; k < 6 && same; ++k) same = std::abs(boxes[a].box[k] - boxes[b].box[k]) <= tol;
-      if (!same) continue;
-      twin[boxes[a].face] = static_cast<long>(boxes[b].face);
-      twin[boxes[b].face] = static_cast<long>(boxes[a].face);
+// Per face (by position): another face lying on it (coincident_faces), or -1.
+std::vector<long> twin_faces(const wefm_cad::CadModel& model) {
+  const std::vector<size_t> source = coincident_faces(model);
+  std::vector<long> twin(source.size(), -1);
+  for (size_t j = 0; j < source.size(); ++j)
+    if (source[j]) {
+      twin[j] = static_cast<long>(source[j] - 1);
+      twin[source[j] - 1] = static_cast<long>(j);
     }
   return twin;
 }
@@ -422,7 +400,7 @@ class Merger {
  public:
   Merger(wefm_cad::CadModel& model, std::vector<double>& sizes, double h)
       : faces_(model.faces), sizes_(sizes), tol_(1e-7 * model.bbox_diagonal), h_(h), alive_(faces_.size(), 1),
-        facet_face_(faces_.size()), twin_(coincident_faces(faces_, 1e-6 * model.bbox_diagonal)) {
+        facet_face_(faces_.size()), twin_(twin_faces(model)) {
     users_ = edge_users(faces_, alive_);
   }
   bool alive(size_t i) const { return alive_[i] && faces_[i].error.empty(); }
