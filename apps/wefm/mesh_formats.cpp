@@ -7,6 +7,7 @@
 
 #include "exit_codes.hpp"
 #include "text_out.hpp"
+#include "wefm/common/obj_lines.hpp"
 
 namespace wefm_cli {
 
@@ -105,13 +106,12 @@ bool Prepared::consistent(bool uv_per_point, std::string& why) const {
   return why.empty();
 }
 
-// TextOut with the description's number style.
+// TextOut with the description's number style (`digits` as TextOut::real takes it).
 class Writer {
  public:
-  Writer(TextOut& out, bool digits17) : out_(out), digits17_(digits17) {}
+  Writer(TextOut& out, int digits) : out_(out), digits_(digits) {}
   Writer& num(double v) {
-    if (digits17_) out_.general(v, 17);
-    else out_.num(v);
+    out_.real(v, digits_);
     return *this;
   }
   Writer& nums(const double* v, size_t n, char sep = ' ') {
@@ -136,31 +136,30 @@ class Writer {
 
  private:
   TextOut& out_;
-  bool digits17_;
+  int digits_;
 };
 
-void write_obj(Writer& w, const Prepared& p) {
+// The OBJ lines of common/obj_lines, which the library's OBJ files use too: a `g NAME` line where
+// the group changes (obj_groups), "f v/vt" with UVs, "f v" without.
+void write_obj(TextOut& out, int digits, const Prepared& p) {
   const MeshDescription& m = p.mesh();
-  for (const std::string& c : m.comments) w.put("# ").put(one_line(c)).put('\n');
-  for (size_t i = 0; i < p.points(); ++i) w.put("v ").nums(&m.xyz[3 * i], 3).put('\n');
-  for (size_t i = 0; i + 1 < m.uv.size; i += 2) w.put("vt ").nums(&m.uv[i], 2).put('\n');
+  wefm_common::ObjLines<TextOut> obj(out, digits);
+  for (const std::string& c : m.comments) obj.comment(c);
+  for (size_t i = 0; i < p.points(); ++i) obj.vertex(m.xyz[3 * i], m.xyz[3 * i + 1], m.xyz[3 * i + 2]);
+  for (size_t i = 0; i + 1 < m.uv.size; i += 2) obj.texture(m.uv[i], m.uv[i + 1]);
   std::map<int, std::string> names;
-  for (const MeshGroup& g : m.groups) names[g.tag] = one_line(g.name);
+  for (const MeshGroup& g : m.groups) names[g.tag] = g.name;
   bool first = true;
   int current = 0;
   for (size_t e = 0; e < p.elements(); ++e) {
     if (m.obj_groups && (first || p.group_of_element(e) != current)) {
       current = p.group_of_element(e);
-      w.put("g ").put(names[current]).put('\n');
+      obj.group(names[current]);
     }
     first = false;
-    w.put('f');
-    for (size_t k = 0; k < p.npe(); ++k) {
-      const size_t c = e * p.npe() + k;
-      w.put(' ').integer(int64_t{m.elements[c]} + 1);
-      if (p.has_uv()) w.put('/').integer(int64_t{m.corner_uv.empty() ? m.elements[c] : m.corner_uv[c]} + 1);
-    }
-    w.put('\n');
+    const int32_t* v = m.elements.data + e * p.npe();
+    const int32_t* t = !p.has_uv() ? nullptr : m.corner_uv.empty() ? v : m.corner_uv.data + e * p.npe();
+    obj.face(v, t, p.npe());
   }
 }
 
@@ -349,9 +348,10 @@ int write_mesh(const std::string& path, MeshFormat format, const MeshDescription
     error = out.error();
     return out.failure_code();
   }
-  Writer w(out, mesh.digits17);
+  const int digits = mesh.digits17 ? 17 : 0;
+  Writer w(out, digits);
   switch (format) {
-    case MeshFormat::obj: write_obj(w, p); break;
+    case MeshFormat::obj: write_obj(out, digits, p); break;
     case MeshFormat::msh: write_msh(w, p); break;
     case MeshFormat::vtk: write_vtk(w, p); break;
     case MeshFormat::vtu: write_vtu(w, p); break;

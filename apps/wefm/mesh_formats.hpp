@@ -5,7 +5,8 @@
 // whole or not at all.
 //
 //   .obj  v / vt / f (v/vt where there are UVs), `g NAME` per group where asked; a UV per corner is
-//         kept as it is (a seam vertex has one `v` and one `vt` per use).
+//         kept as it is (a seam vertex has one `v` and one `vt` per use). The lines are those of
+//         common/obj_lines, which the library's own OBJ files use too.
 //   .msh  Gmsh MSH 4.1 ASCII: one surface entity and one named physical group per face group. MSH
 //         nodes carry no UV (meshio reads no parametric nodes), so UVs go into a $NodeData view
 //         "uv" of 3 components (u, v, 0): Gmsh views are scalars, vectors or tensors.
