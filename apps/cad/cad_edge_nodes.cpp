@@ -8,6 +8,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "wefm/common/linear_size.hpp"
+
 namespace wefm_cad {
 
 namespace {
@@ -47,42 +49,24 @@ double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
-// A size along an edge, piecewise linear in arc length between samples (s_k, v_k). Nodes sit at
-// equal steps of the integral of 1 / size, which is closed-form on each linear piece.
+// A size along an edge, linear in arc length between samples (s_k, v_k), as common/linear_size.
 class SampledSize {
  public:
   SampledSize(const std::vector<double>& s, const std::vector<double>& v) : L_(s.back()) {
-    double phi = 0;
     for (size_t k = 0; k + 1 < s.size(); ++k) {
       if (!(s[k + 1] > s[k])) continue;
-      Piece p{s[k], s[k + 1], phi, v[k], (v[k + 1] - v[k]) / (s[k + 1] - s[k])};
-      if (std::fabs(p.c1) < 1e-12) p.c1 = 0;
-      phi += p.integral(p.b);
-      pieces_.push_back(p);
+      double slope = (v[k + 1] - v[k]) / (s[k + 1] - s[k]);
+      if (std::fabs(slope) < 1e-12) slope = 0;
+      size_.append(s[k], s[k + 1], v[k], slope);
     }
-    total_ = phi;
   }
-  double total() const { return total_; }  // the integral of 1 / size over the edge
+  double total() const { return size_.total(); }  // the integral of 1 / size over the edge
   // Arc length at which the integral reaches `phi`.
-  double inverse(double phi) const {
-    for (const Piece& p : pieces_) {
-      const double span = p.integral(p.b);
-      if (phi <= p.phi0 + span || &p == &pieces_.back()) {
-        const double t = std::clamp(phi - p.phi0, 0.0, span);
-        const double s = p.c1 == 0 ? p.a + p.c0 * t : p.a + p.c0 * (std::exp(p.c1 * t) - 1) / p.c1;
-        return std::clamp(s, p.a, p.b);
-      }
-    }
-    return L_;
-  }
+  double inverse(double phi) const { return size_.empty() ? L_ : size_.inverse(phi); }
 
  private:
-  struct Piece {
-    double a, b, phi0, c0, c1;
-    double integral(double s) const { return c1 == 0 ? (s - a) / c0 : std::log((c0 + c1 * (s - a)) / c0) / c1; }
-  };
-  double L_, total_ = 0;
-  std::vector<Piece> pieces_;
+  double L_;
+  wefm_common::LinearSize size_;
 };
 
 // Sizes at samples no faster-growing than g per unit length in either direction (the smallest

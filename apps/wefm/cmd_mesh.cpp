@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "owned.hpp"
-#include "lo_lambda.hpp"
+#include "wefm/common/lo_lambda.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
 #include "flatten_settings.hpp"
@@ -113,8 +113,8 @@ int write_domain_mesh(const std::string& path, const MeshArrays& m, std::string&
 double element_lambda(const MeshArrays& m, size_t e) {
   const int32_t* n = &m.elements[e];
   auto X = [&](int k) { return &m.xyz[3 * static_cast<size_t>(n[k])]; };
-  double lam = lo_lambda(X(0), X(1), X(2));
-  if (m.npe == 4) lam = std::min(lam, lo_lambda(X(0), X(2), X(3)));
+  double lam = wefm_common::lo_lambda(X(0), X(1), X(2));
+  if (m.npe == 4) lam = std::min(lam, wefm_common::lo_lambda(X(0), X(2), X(3)));
   return lam;
 }
 

@@ -1,5 +1,5 @@
 #include "model_mesh.hpp"
-#include "lo_lambda.hpp"
+#include "wefm/common/lo_lambda.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -367,7 +367,7 @@ ConformityCounts ModelMesh::conformity() const {
     }
   std::vector<int> faces;
   for (size_t t = 0; t + 2 < tris_.size(); t += 3) {
-    bool bad = lo_lambda(&xyz_[3 * static_cast<size_t>(tris_[t])], &xyz_[3 * static_cast<size_t>(tris_[t + 1])],
+    bool bad = wefm_common::lo_lambda(&xyz_[3 * static_cast<size_t>(tris_[t])], &xyz_[3 * static_cast<size_t>(tris_[t + 1])],
                          &xyz_[3 * static_cast<size_t>(tris_[t + 2])]) < kZeroAreaLambda;
     out.zero_area_triangles += bad;
     for (size_t c = 0; c < 3 && !bad && !defect_edges.empty(); ++c)
@@ -386,7 +386,7 @@ LambdaStats ModelMesh::lambda_of(const std::vector<double>& xyz, const std::vect
   int64_t below = 0;
   s.lambda_min = 1;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
-    const double l = lo_lambda(&xyz[3 * static_cast<size_t>(triangles[t])], &xyz[3 * static_cast<size_t>(triangles[t + 1])],
+    const double l = wefm_common::lo_lambda(&xyz[3 * static_cast<size_t>(triangles[t])], &xyz[3 * static_cast<size_t>(triangles[t + 1])],
                                &xyz[3 * static_cast<size_t>(triangles[t + 2])]);
     log_sum += std::log(std::max(l, 1e-300));
     s.lambda_min = std::min(s.lambda_min, l);

@@ -3,17 +3,13 @@
 #include <cmath>
 #include <vector>
 
+#include "wefm/common/lo_lambda.hpp"
 #include "wefm/core/meshing/domain_mesh.hpp"
 
 namespace wefm::meshing {
 
-// Lo's lambda = 4 sqrt(3) area / (l1^2 + l2^2 + l3^2): 1 for an equilateral triangle, 0 when flat.
-// Inline: smoothing and node optimisation evaluate it in their innermost loops.
-inline double lo_lambda(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  const double s = (b - a).squaredNorm() + (c - b).squaredNorm() + (a - c).squaredNorm();
-  return s > 0 ? 4.0 * std::sqrt(3.0) * area / s : 0.0;
-}
+// Lo's lambda (common/lo_lambda): 1 for an equilateral triangle, 0 when flat.
+inline double lo_lambda(const Vec3& a, const Vec3& b, const Vec3& c) { return wefm_common::lo_lambda(a, b, c); }
 
 // Minimum over the four corners of the corner Jacobian (e1 x e2 . n) / (|e1| |e2|), n the quad's
 // mean normal: 1 for a rectangle, <= 0 for a folded or inverted quad.
