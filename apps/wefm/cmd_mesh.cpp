@@ -32,6 +32,7 @@ std::vector<OptionSpec> mesh_specs() {
       {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
        false},
       {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
+      {"elements", 0, "tri|quad-dominant|quad", "free: triangles; quads where pairs of triangles make good ones (scaled Jacobian >= 0.3); or all quads (each element split at its edge midpoints and centre)", "tri", false},
       {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves, then up to 3 optimisation passes (0: neither)", "5", false},
       {"min-angle", 0, "DEG", "free: UV angle bound of the circumcentre refinement after the front", "28", false},
       {"corner-angle", 0, "DEG", "loop vertices turning more than this stay boundary nodes", "30", false},
@@ -53,8 +54,8 @@ void print_help() {
       "Usage: wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite] [options]\n\n"
       "Flattens one face (as wefm flatten, with the same options), meshes the 2D domain at the 3D size H\n"
       "and maps the mesh back to 3D. Free meshes are triangles (frontal-Delaunay placement sized in 3D +\n"
-      "smoothing and optimisation judged in 3D); transfinite meshes are quads on four corners (a periodic\n"
-      "strip counts).\n\n%s\n"
+      "smoothing and optimisation judged in 3D), quad-dominant or all quads with --elements; transfinite\n"
+      "meshes are quads on four corners (a periodic strip counts).\n\n%s\n"
       "Options:\n%s\n%s",
       mesh_formats_help(), format_options(mesh_specs()).c_str(), exit_codes_help());
 }
@@ -109,12 +110,15 @@ int write_domain_mesh(const std::string& path, const MeshArrays& m, std::string&
   return write_mesh(path, format, d, error);
 }
 
+// Corners of the element at e: a quad-dominant mesh's triangle is four nodes, the last -1.
+size_t element_corners(const MeshArrays& m, size_t e) { return m.npe == 4 && m.elements[e + 3] < 0 ? 3 : static_cast<size_t>(m.npe); }
+
 // Lo's lambda of an element in 3D; a quad by its worse half.
 double element_lambda(const MeshArrays& m, size_t e) {
   const int32_t* n = &m.elements[e];
   auto X = [&](int k) { return &m.xyz[3 * static_cast<size_t>(n[k])]; };
   double lam = wefm_common::lo_lambda(X(0), X(1), X(2));
-  if (m.npe == 4) lam = std::min(lam, wefm_common::lo_lambda(X(0), X(2), X(3)));
+  if (element_corners(m, e) == 4) lam = std::min(lam, wefm_common::lo_lambda(X(0), X(2), X(3)));
   return lam;
 }
 
@@ -163,7 +167,7 @@ int write_mesh_svg(const std::string& path, const MeshArrays& m, std::string& er
     lam_min = std::min(lam_min, lam);
     below += lam < 0.6;
     f << "<polygon fill=\"" << lambda_colour(lam) << "\" stroke=\"black\" stroke-width=\"0.3\" points=\"";
-    for (size_t k = 0; k < npe; ++k) {
+    for (size_t k = 0; k < element_corners(m, e); ++k) {
       const size_t v = static_cast<size_t>(m.elements[e + k]);
       f << 10 + (m.uv[2 * v] - lo[0]) * scale << ',' << 10 + (hi[1] - m.uv[2 * v + 1]) * scale << ' ';
     }
@@ -322,6 +326,13 @@ bool parse_mesh_options(const ParsedArgs& args, wefm_mesh_options& o, std::strin
     else if (t == "transfinite") o.type = WEFM_MESH_TRANSFINITE;
     else return error = "--type: expected free or transfinite, got '" + t + "'", false;
   }
+  if (args.has("elements")) {
+    const std::string& t = args.value("elements");
+    if (t == "tri") o.elements = WEFM_ELEMENTS_TRIANGLES;
+    else if (t == "quad-dominant") o.elements = WEFM_ELEMENTS_QUAD_DOMINANT;
+    else if (t == "quad") o.elements = WEFM_ELEMENTS_QUADS;
+    else return error = "--elements: expected tri, quad-dominant or quad, got '" + t + "'", false;
+  }
   if (args.has("corners")) {
     std::stringstream ss(args.value("corners"));
     std::string item;
@@ -407,6 +418,7 @@ nlohmann::json report_json(const MeshRequest& q, const MeshRun& run, double t_me
   j["mesh"] = {{"nodes", r.nodes}, {"elements", r.elements}, {"nodes_per_element", r.nodes_per_element},
                {"lambda_mesh", r.lambda_mesh}, {"lambda_min", r.lambda_min}, {"fraction_below_0_6", r.fraction_below_0_6},
                {"scaled_jacobian_min", r.scaled_jacobian_min}, {"scaled_jacobian_mean", r.scaled_jacobian_mean},
+               {"quads", r.quads}, {"quad_area_fraction", r.quad_area_fraction},
                {"wiggle_max", r.wiggle_max}, {"wiggle_mean", r.wiggle_mean},
                {"time", {{"boundary", r.time_boundary}, {"mesh", r.time_mesh}, {"smooth", r.time_smooth}, {"map", r.time_map}, {"total", t_mesh}}}};
   j["outputs"] = {{"mesh", q.out}, {"domain_mesh", q.domain}};
@@ -416,10 +428,13 @@ nlohmann::json report_json(const MeshRequest& q, const MeshRun& run, double t_me
 }
 
 void print_summary(const MeshRequest& q, const wefm_mesh_report& r) {
+  const bool mixed = r.quads > 0 && r.quads < r.elements;
   std::printf("%s: %lld %s, %lld nodes; lambda_mesh %.4f, min %.4f, below 0.6 %.2f%%", q.input.c_str(), static_cast<long long>(r.elements),
-              r.nodes_per_element == 4 ? "quads" : "triangles", static_cast<long long>(r.nodes), r.lambda_mesh, r.lambda_min,
-              100 * r.fraction_below_0_6);
-  if (r.nodes_per_element == 4) std::printf("; scaled Jacobian min %.4f", r.scaled_jacobian_min);
+              mixed ? "elements" : r.nodes_per_element == 4 ? "quads" : "triangles", static_cast<long long>(r.nodes), r.lambda_mesh,
+              r.lambda_min, 100 * r.fraction_below_0_6);
+  if (mixed)
+    std::printf("; %lld quads, %.1f%% of the area", static_cast<long long>(r.quads), 100 * r.quad_area_fraction);
+  if (r.quads > 0) std::printf("; scaled Jacobian min %.4f mean %.4f", r.scaled_jacobian_min, r.scaled_jacobian_mean);
   if (q.mesh.type == WEFM_MESH_TRANSFINITE) std::printf("; wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
   std::printf("\n");
 }

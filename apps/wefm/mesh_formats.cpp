@@ -48,6 +48,8 @@ class Prepared {
   size_t points() const { return m_.xyz.size / 3; }
   size_t elements() const { return m_.elements.size / npe(); }
   size_t npe() const { return static_cast<size_t>(m_.nodes_per_element); }
+  // Corners of element e: a quad-dominant mesh's triangle is four nodes, the last -1.
+  size_t corners(size_t e) const { return npe() == 4 && m_.elements[e * 4 + 3] < 0 ? 3 : npe(); }
   bool has_uv() const { return !m_.uv.empty(); }
   int group_of_element(size_t e) const { return m_.element_group.empty() ? m_.groups[0].tag : m_.element_group[e]; }
   // MSH: the entity a point is listed under.
@@ -81,7 +83,7 @@ std::vector<int> Prepared::point_groups() const {
   std::vector<int> g(points(), 0);
   std::vector<char> seen(points(), 0);
   for (size_t e = 0; e < elements(); ++e)
-    for (size_t k = 0; k < npe(); ++k) {
+    for (size_t k = 0; k < corners(e); ++k) {
       const size_t p = static_cast<size_t>(m_.elements[e * npe() + k]);
       if (!seen[p]) g[p] = group_of_element(e), seen[p] = 1;
     }
@@ -99,10 +101,14 @@ bool Prepared::consistent(bool uv_per_point, std::string& why) const {
   else if (!m_.corner_uv.empty() && m_.corner_uv.size != m_.elements.size) why = "a UV per corner";
   else if (has_uv() && m_.corner_uv.empty() && nu < n) why = "a UV per point";
   else if (uv_per_point && has_uv() && nu != n) why = "one UV per point";
-  for (size_t i = 0; why.empty() && i < m_.elements.size; ++i)
+  for (size_t i = 0; why.empty() && i < m_.elements.size; ++i) {
+    if (npe() == 4 && i % 4 == 3 && m_.elements[i] == -1) continue;  // a triangle among quads
     if (m_.elements[i] < 0 || static_cast<size_t>(m_.elements[i]) >= n) why = "an element node out of range";
-  for (size_t i = 0; why.empty() && i < m_.corner_uv.size; ++i)
+  }
+  for (size_t i = 0; why.empty() && i < m_.corner_uv.size; ++i) {
+    if (npe() == 4 && i % 4 == 3 && m_.elements[i] == -1) continue;  // a triangle among quads
     if (m_.corner_uv[i] < 0 || static_cast<size_t>(m_.corner_uv[i]) >= nu) why = "a corner UV out of range";
+  }
   return why.empty();
 }
 
@@ -159,7 +165,7 @@ void write_obj(TextOut& out, int digits, const Prepared& p) {
     first = false;
     const int32_t* v = m.elements.data + e * p.npe();
     const int32_t* t = !p.has_uv() ? nullptr : m.corner_uv.empty() ? v : m.corner_uv.data + e * p.npe();
-    obj.face(v, t, p.npe());
+    obj.face(v, t, p.corners(e));
   }
 }
 
@@ -192,14 +198,16 @@ void write_msh(Writer& w, const Prepared& p) {
     for (size_t v : vs) w.integer(static_cast<int64_t>(v) + 1).put('\n');
     for (size_t v : vs) w.nums(&m.xyz[3 * v], 3).put('\n');
   }
-  std::map<int, std::vector<size_t>> elements_of;
-  for (size_t e = 0; e < p.elements(); ++e) elements_of[p.group_of_element(e)].push_back(e);
+  // A block per group and element type (a quad-dominant mesh has triangles and quads).
+  std::map<std::pair<int, size_t>, std::vector<size_t>> elements_of;
+  for (size_t e = 0; e < p.elements(); ++e) elements_of[{p.group_of_element(e), p.corners(e)}].push_back(e);
   w.put("$EndNodes\n$Elements\n").integer(static_cast<int64_t>(elements_of.size())).put(' ').integer(ne).put(" 1 ").integer(ne).put('\n');
-  for (const auto& [tag, es] : elements_of) {
-    w.put("2 ").integer(tag).put(p.npe() == 4 ? " 3 " : " 2 ").integer(static_cast<int64_t>(es.size())).put('\n');
+  for (const auto& [block, es] : elements_of) {
+    const auto [tag, corners] = block;
+    w.put("2 ").integer(tag).put(corners == 4 ? " 3 " : " 2 ").integer(static_cast<int64_t>(es.size())).put('\n');
     for (size_t e : es) {
       w.integer(static_cast<int64_t>(e) + 1);
-      for (size_t k = 0; k < p.npe(); ++k) w.put(' ').integer(int64_t{m.elements[e * p.npe() + k]} + 1);
+      for (size_t k = 0; k < corners; ++k) w.put(' ').integer(int64_t{m.elements[e * p.npe() + k]} + 1);
       w.put('\n');
     }
   }
@@ -210,7 +218,7 @@ void write_msh(Writer& w, const Prepared& p) {
   w.put("$EndNodeData\n");
 }
 
-int vtk_cell_type(const Prepared& p) { return p.npe() == 4 ? 9 : 5; }
+int vtk_cell_type(const Prepared& p, size_t e) { return p.corners(e) == 4 ? 9 : 5; }
 
 void write_vtk(Writer& w, const Prepared& p) {
   const MeshDescription& m = p.mesh();
@@ -219,14 +227,16 @@ void write_vtk(Writer& w, const Prepared& p) {
   const int64_t n = static_cast<int64_t>(p.points()), ne = static_cast<int64_t>(p.elements());
   w.put("# vtk DataFile Version 3.0\n").put(title).put("\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS ").integer(n).put(" double\n");
   for (size_t v = 0; v < p.points(); ++v) w.nums(&m.xyz[3 * v], 3).put('\n');
-  w.put("CELLS ").integer(ne).put(' ').integer(ne * static_cast<int64_t>(p.npe() + 1)).put('\n');
+  int64_t cell_list = 0;
+  for (size_t e = 0; e < p.elements(); ++e) cell_list += static_cast<int64_t>(p.corners(e) + 1);
+  w.put("CELLS ").integer(ne).put(' ').integer(cell_list).put('\n');
   for (size_t e = 0; e < p.elements(); ++e) {
-    w.integer(static_cast<int64_t>(p.npe()));
-    for (size_t k = 0; k < p.npe(); ++k) w.put(' ').integer(m.elements[e * p.npe() + k]);
+    w.integer(static_cast<int64_t>(p.corners(e)));
+    for (size_t k = 0; k < p.corners(e); ++k) w.put(' ').integer(m.elements[e * p.npe() + k]);
     w.put('\n');
   }
   w.put("CELL_TYPES ").integer(ne).put('\n');
-  for (size_t e = 0; e < p.elements(); ++e) w.integer(vtk_cell_type(p)).put('\n');
+  for (size_t e = 0; e < p.elements(); ++e) w.integer(vtk_cell_type(p, e)).put('\n');
   if (p.has_uv()) {
     w.put("POINT_DATA ").integer(n).put("\nFIELD FieldData 1\nuv 2 ").integer(n).put(" double\n");
     for (size_t v = 0; v < p.points(); ++v) w.nums(&m.uv[2 * v], 2).put('\n');
@@ -251,13 +261,14 @@ void write_vtu(Writer& w, const Prepared& p) {
   for (size_t v = 0; v < p.points(); ++v) w.nums(&m.xyz[3 * v], 3).put('\n');
   w.put("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
   for (size_t e = 0; e < p.elements(); ++e) {
-    for (size_t k = 0; k < p.npe(); ++k) w.put(k ? " " : "").integer(m.elements[e * p.npe() + k]);
+    for (size_t k = 0; k < p.corners(e); ++k) w.put(k ? " " : "").integer(m.elements[e * p.npe() + k]);
     w.put('\n');
   }
   w.put("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-  for (size_t e = 0; e < p.elements(); ++e) w.integer(static_cast<int64_t>((e + 1) * p.npe())).put('\n');
+  int64_t offset = 0;
+  for (size_t e = 0; e < p.elements(); ++e) w.integer(offset += static_cast<int64_t>(p.corners(e))).put('\n');
   w.put("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  for (size_t e = 0; e < p.elements(); ++e) w.integer(vtk_cell_type(p)).put('\n');
+  for (size_t e = 0; e < p.elements(); ++e) w.integer(vtk_cell_type(p, e)).put('\n');
   w.put("</DataArray>\n</Cells>\n");
   if (p.has_uv()) {
     w.put("<PointData>\n<DataArray type=\"Float64\" Name=\"uv\" NumberOfComponents=\"2\" format=\"ascii\">\n");
@@ -284,8 +295,8 @@ void write_ply(Writer& w, const Prepared& p) {
     w.put('\n');
   }
   for (size_t e = 0; e < p.elements(); ++e) {
-    w.integer(static_cast<int64_t>(p.npe()));
-    for (size_t k = 0; k < p.npe(); ++k) w.put(' ').integer(m.elements[e * p.npe() + k]);
+    w.integer(static_cast<int64_t>(p.corners(e)));
+    for (size_t k = 0; k < p.corners(e); ++k) w.put(' ').integer(m.elements[e * p.npe() + k]);
     w.put(' ').integer(p.group_of_element(e)).put('\n');
   }
 }

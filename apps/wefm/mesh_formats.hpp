@@ -60,7 +60,7 @@ struct MeshDescription {
   ArrayView<double> uv;               // 2 per UV; empty: no UVs
   ArrayView<int32_t> corner_uv;       // per element corner, an index into uv; empty: uv is per point
   ArrayView<int32_t> elements;        // nodes_per_element 0-based points per element
-  int nodes_per_element = 3;          // 3 (triangles) or 4 (quads)
+  int nodes_per_element = 3;          // 3 (triangles) or 4 (quads; a fourth node -1 is a triangle among them)
   ArrayView<int> element_group;       // per element, a group tag; empty: every element in groups[0]
   ArrayView<int> point_group;         // MSH entity each point is listed under; empty: its first element's
   std::vector<MeshGroup> groups;      // every tag used, in the order MSH lists its entities

@@ -27,6 +27,7 @@ wefm::meshing::MeshOptions convert(const wefm_mesh_options& o) {
   m.corner_angle_deg = o.corner_angle_deg;
   m.min_angle_deg = o.min_angle_deg;
   m.max_elements = o.max_elements;
+  m.elements = static_cast<wefm::meshing::Elements>(o.elements);
   return m;
 }
 
@@ -142,6 +143,8 @@ WEFM_API wefm_status wefm_domain_mesh_get_report(const wefm_domain_mesh* mesh, w
     r.time_mesh = s.time_mesh;
     r.time_smooth = s.time_smooth;
     r.time_map = s.time_map;
+    r.quads = s.quads;
+    r.quad_area_fraction = s.quad_area_fraction;
     wefm::capi::write_versioned(report, r);
   });
 }

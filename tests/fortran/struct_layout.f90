@@ -103,6 +103,7 @@ program struct_layout
   call at('wefm_mesh_options corner_angle_deg', c_loc(v3), c_loc(v3%corner_angle_deg))
   call at('wefm_mesh_options min_angle_deg', c_loc(v3), c_loc(v3%min_angle_deg))
   call at('wefm_mesh_options max_elements', c_loc(v3), c_loc(v3%max_elements))
+  call at('wefm_mesh_options elements', c_loc(v3), c_loc(v3%elements))
 
   print '(a,i0)', 'wefm_mesh_report sizeof ', c_sizeof(v4)
   call at('wefm_mesh_report struct_size', c_loc(v4), c_loc(v4%struct_size))
@@ -120,6 +121,8 @@ program struct_layout
   call at('wefm_mesh_report time_mesh', c_loc(v4), c_loc(v4%time_mesh))
   call at('wefm_mesh_report time_smooth', c_loc(v4), c_loc(v4%time_smooth))
   call at('wefm_mesh_report time_map', c_loc(v4), c_loc(v4%time_map))
+  call at('wefm_mesh_report quads', c_loc(v4), c_loc(v4%quads))
+  call at('wefm_mesh_report quad_area_fraction', c_loc(v4), c_loc(v4%quad_area_fraction))
 
 contains
 

@@ -100,7 +100,7 @@ wefm_mesh_options mesh_options(Input& in, double span) {
   }
   const int n = in.u8() % 6;
   for (int k = 0; k < n; ++k) {
-    switch (in.u8() % 8) {
+    switch (in.u8() % 9) {
       case 0: o.corners[in.u8() % 4] = in.index(-1, 40); break;
       case 1: o.quads = in.u8() & 1; break;
       case 2: o.smoothing_iterations = in.index(-1, 4); break;
@@ -108,6 +108,7 @@ wefm_mesh_options mesh_options(Input& in, double span) {
       case 4: o.min_angle_deg = in.u8() % 8 == 0 ? in.number() : in.u8() * (40.0 / 255); break;
       case 5: o.max_elements = in.index(-1, 400); break;
       case 6: o.type = in.index(-1, 2); break;
+      case 7: o.elements = in.index(-1, 3); break;
       default: o.struct_size = in.u8() % 2 ? 0 : sizeof(size_t) + in.u8() % 64; break;  // old/odd callers
     }
   }
@@ -126,16 +127,25 @@ void inspect(wefm_domain_mesh* dm, Input& in) {
     if (!std::isfinite(x)) violated("domain mesh", "a non-finite UV node");
   for (double x : xyz)
     if (!std::isfinite(x)) violated("domain mesh", "a non-finite 3D node");
-  for (int32_t e : el)
-    if (e < 0 || e >= nodes) violated("domain mesh", "an element names a node that does not exist");
   wefm_mesh_report r;
   wefm_mesh_report_init(&r);
   if (in.u8() % 8 == 0) r.struct_size = in.u8() % 2 ? 0 : sizeof(size_t) + in.u8() % 64;
   const wefm_status s = wefm_domain_mesh_get_report(dm, &r);
   check(s, nullptr);
+  // Four nodes per element (the report's, else as the array allows): a fourth node -1 is a triangle
+  // among quads, nowhere else.
+  const bool fours = s == WEFM_OK && r.struct_size == sizeof r ? r.nodes_per_element == 4 : el.size() % 4 == 0;
+  int64_t quads = 0;
+  for (size_t i = 0; i < el.size(); ++i) {
+    if (fours && i % 4 == 3 && el[i] == -1) continue;
+    if (fours && i % 4 == 3) ++quads;
+    if (el[i] < 0 || el[i] >= nodes) violated("domain mesh", "an element names a node that does not exist");
+  }
   if (s == WEFM_OK && r.struct_size == sizeof r) {
     if (r.nodes != nodes || (r.nodes_per_element != 3 && r.nodes_per_element != 4) || r.elements * r.nodes_per_element != static_cast<int64_t>(el.size()))
       violated("domain mesh report", "counts differ from the arrays");
+    if (r.quads != (r.nodes_per_element == 4 ? quads : 0) || !(r.quad_area_fraction >= 0 && r.quad_area_fraction <= 1))
+      violated("domain mesh report", "quad count or area share differs from the elements");
   }
   // Written to the process's private temporary folder (fuzz_files.hpp), removed at exit.
   check(wefm_domain_mesh_write_obj(dm, wefm_fuzz::temp_path("mesh.obj").c_str()), nullptr);

@@ -77,3 +77,32 @@ def test_bad_mesh_options_raise():
             assert "size" in str(e)
         else:
             raise AssertionError("negative size accepted")
+
+
+def test_quad_dominant_and_all_quad_meshes(tmp_path):
+    xyz, tri = cylinder(rings=6, sectors=24, cut=True)
+    with wefm.Face(xyz, tri) as f:
+        f.solve(s=0.5)
+        with f.mesh_domain(size=0.15) as t:
+            triangles = t.report.elements
+        with f.mesh_domain(size=0.15, elements="quad-dominant") as dm:
+            r, el = dm.report, dm.elements
+            assert r.nodes_per_element == 4 and el.shape == (r.elements, 4)
+            is_tri = el[:, 3] == -1
+            # Pairs of the triangle mesh's triangles: the same nodes, each triangle in one element.
+            assert r.quads == (~is_tri).sum() and 2 * r.quads + is_tri.sum() == triangles
+            assert r.quad_area_fraction >= 0.95 and r.scaled_jacobian_min >= 0.3
+            assert (el[~is_tri] >= 0).all() and (el[is_tri, :3] >= 0).all()
+            dm.write_obj(tmp_path / "qd.obj")
+            faces = [l.split()[1:] for l in (tmp_path / "qd.obj").read_text().splitlines() if l.startswith("f ")]
+            assert sorted(len(c) for c in faces) == sorted(3 if t else 4 for t in is_tri)
+        with f.mesh_domain(size=0.15, elements="quads") as dm:
+            r, el = dm.report, dm.elements
+            assert r.quads == r.elements and (el >= 0).all() and r.quad_area_fraction == 1.0
+            # Each edge inside the face is used by two quads, each boundary edge by one.
+            edges = {}
+            for q in el:
+                for k in range(4):
+                    e = tuple(sorted((q[k], q[(k + 1) % 4])))
+                    edges[e] = edges.get(e, 0) + 1
+            assert set(edges.values()) == {1, 2}

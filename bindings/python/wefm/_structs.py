@@ -61,6 +61,11 @@ SOLVER_EIGEN = 2
 MESH_FREE = 0
 MESH_TRANSFINITE = 1
 
+# wefm_elements
+ELEMENTS_TRIANGLES = 0
+ELEMENTS_QUAD_DOMINANT = 1
+ELEMENTS_QUADS = 2
+
 
 class Options(ctypes.Structure):
     """struct wefm_options."""
@@ -168,6 +173,7 @@ class MeshOptions(ctypes.Structure):
         ("corner_angle_deg", c_double),
         ("min_angle_deg", c_double),
         ("max_elements", c_int64),
+        ("elements", c_int),
     ]
 
 
@@ -189,6 +195,8 @@ class MeshReport(ctypes.Structure):
         ("time_mesh", c_double),
         ("time_smooth", c_double),
         ("time_map", c_double),
+        ("quads", c_int64),
+        ("quad_area_fraction", c_double),
     ]
 
 

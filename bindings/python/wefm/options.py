@@ -1,8 +1,8 @@
 """Solve and meshing options as keyword arguments over the wefm_options / wefm_mesh_options structs.
 
 Defaults always come from the library's *_init functions, never from this file.
-Enum-valued fields also accept their names ("rollout", "eigen", "periodic", "transfinite") and
-flag fields accept bool. Integer fields refuse what their C type cannot hold (OverflowError) and
+Enum-valued fields also accept their names ("rollout", "eigen", "periodic", "transfinite",
+"quad-dominant") and flag fields accept bool. Integer fields refuse what their C type cannot hold (OverflowError) and
 non-integers (TypeError) instead of letting ctypes wrap or truncate them.
 """
 import ctypes
@@ -20,6 +20,8 @@ _ENUMS = {
     "solver": {"auto": S.SOLVER_AUTO, "cholmod": S.SOLVER_CHOLMOD, "eigen": S.SOLVER_EIGEN},
     "default_edge_mode": {n: i for i, n in enumerate(EDGE_MODE_NAMES)},
     "type": {"free": S.MESH_FREE, "transfinite": S.MESH_TRANSFINITE},
+    "elements": {"tri": S.ELEMENTS_TRIANGLES, "triangles": S.ELEMENTS_TRIANGLES, "quad-dominant": S.ELEMENTS_QUAD_DOMINANT,
+                 "quad": S.ELEMENTS_QUADS, "quads": S.ELEMENTS_QUADS},
     "residual": {"half-edge": S.RESIDUAL_PER_HALF_EDGE, "use": S.RESIDUAL_PER_USE},
 }
 

@@ -737,6 +737,18 @@ typedef enum wefm_mesh_type {
                                   must have as many (else WEFM_ERROR_UNSUPPORTED) */
 } wefm_mesh_type;
 
+/** wefm_mesh_options.elements: the elements of a free mesh. */
+typedef enum wefm_elements {
+  WEFM_ELEMENTS_TRIANGLES = 0,      /**< triangles only (nodes_per_element 3) */
+  WEFM_ELEMENTS_QUAD_DOMINANT = 1,  /**< pairs of triangles made quads where the quad is good in 3D (scaled
+                                         Jacobian >= 0.3, convex in UV); nodes_per_element 4, and a triangle
+                                         left over has -1 as its fourth node */
+  WEFM_ELEMENTS_QUADS = 2           /**< quad-dominant, then every element split into quads at its edge
+                                         midpoints and centre (nodes_per_element 4, all quads); the boundary
+                                         gets a node at each segment's midpoint (of the 3D chord), so faces
+                                         given the same edge nodes still share theirs */
+} wefm_elements;
+
 /** Options of wefm_face_mesh_domain(); fill with wefm_mesh_options_init() first. */
 typedef struct wefm_mesh_options {
   size_t struct_size;
@@ -748,6 +760,8 @@ typedef struct wefm_mesh_options {
   double corner_angle_deg;   /**< loop vertices turning more than this are kept as nodes. Default 30 */
   double min_angle_deg;      /**< angle bound in UV of the circumcentre refinement after the front. Default 28 */
   int64_t max_elements;      /**< refuse to exceed this many elements (0 = no cap). Default 0 */
+  int elements;              /**< wefm_elements, free meshes only (transfinite meshes follow `quads`).
+                                  Default WEFM_ELEMENTS_TRIANGLES */
 } wefm_mesh_options;
 
 /** Quality and cost of a domain mesh (wefm_domain_mesh_get_report()); fill with wefm_mesh_report_init() first. */
@@ -763,6 +777,8 @@ typedef struct wefm_mesh_report {
   double wiggle_max;             /**< transfinite only: eq. 12 over rail lines, else 0 */
   double wiggle_mean;
   double time_boundary, time_mesh, time_smooth, time_map;
+  int64_t quads;                 /**< elements with four nodes (the rest are triangles) */
+  double quad_area_fraction;     /**< the quads' share of the mesh's 3D area */
 } wefm_mesh_report;
 
 /** Fill `options` with the defaults (size must still be set); `struct_size` as for wefm_options_init(). */
@@ -791,7 +807,8 @@ WEFM_API void wefm_domain_mesh_release(wefm_domain_mesh* mesh);
 WEFM_API wefm_status wefm_domain_mesh_get_uv(const wefm_domain_mesh* mesh, double* uv, int64_t capacity, int64_t* count);
 /** Node 3D positions: 3 doubles per node. */
 WEFM_API wefm_status wefm_domain_mesh_get_xyz(const wefm_domain_mesh* mesh, double* xyz, int64_t capacity, int64_t* count);
-/** Elements: nodes_per_element int32 per element. */
+/** Elements: nodes_per_element int32 per element, counter-clockwise in UV. With nodes_per_element 4, a
+ *  fourth node of -1 marks a triangle (quad-dominant meshes, WEFM_ELEMENTS_QUAD_DOMINANT). */
 WEFM_API wefm_status wefm_domain_mesh_get_elements(const wefm_domain_mesh* mesh, int32_t* nodes, int64_t capacity, int64_t* count);
 /** Quality report of the mesh; `report` filled with wefm_mesh_report_init() first, only its first
  *  struct_size bytes are written. */

@@ -12,7 +12,11 @@ void write_obj(const std::string& path, const DomainMesh& m) {
   for (const Vec3& p : m.xyz) w.vertex(p.x(), p.y(), p.z());
   for (const P2& p : m.uv) w.texture(p.x(), p.y());
   // A node's UV is its own: the same index for v and vt.
-  for (std::size_t e = 0; e + npe <= m.elements.size(); e += npe) w.face(&m.elements[e], &m.elements[e], npe);
+  // A quad-dominant mesh's triangle ends in -1.
+  for (std::size_t e = 0; e + npe <= m.elements.size(); e += npe) {
+    const std::size_t corners = npe == 4 && m.elements[e + 3] < 0 ? 3 : npe;
+    w.face(&m.elements[e], &m.elements[e], corners);
+  }
   w.commit();
 }
 

@@ -43,28 +43,38 @@ void measure_quality(DomainMesh& m) {
   MeshReport& r = m.report;
   r.nodes = static_cast<std::int64_t>(m.uv.size());
   r.nodes_per_element = m.nodes_per_element;
+  r.quads = 0;
   const size_t npe = static_cast<size_t>(m.nodes_per_element);
   r.elements = static_cast<std::int64_t>(m.elements.size() / npe);
   auto X = [&](size_t e, size_t k) -> const Vec3& { return m.xyz[static_cast<size_t>(m.elements[e * npe + k])]; };
   std::vector<double> lam;
-  double sj_sum = 0, sj_min = 1;
+  double sj_sum = 0, sj_min = 1, quad_area = 0, area = 0;
+  auto tri_area = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); };
   for (size_t e = 0; e < static_cast<size_t>(r.elements); ++e) {
-    if (npe == 3) {
+    // A quad-dominant mesh's triangle: four nodes, the last -1.
+    if (npe == 3 || m.elements[e * npe + 3] < 0) {
       lam.push_back(lo_lambda(X(e, 0), X(e, 1), X(e, 2)));
+      area += tri_area(X(e, 0), X(e, 1), X(e, 2));
       continue;
     }
     const double sj = scaled_jacobian(X(e, 0), X(e, 1), X(e, 2), X(e, 3));
     sj_sum += sj, sj_min = std::min(sj_min, sj);
+    r.quads++;
     // Quads also get Lo's lambda on the two triangles of their shorter diagonal.
+    double a = 0;
     if ((X(e, 0) - X(e, 2)).norm() <= (X(e, 1) - X(e, 3)).norm()) {
       lam.push_back(lo_lambda(X(e, 0), X(e, 1), X(e, 2)));
       lam.push_back(lo_lambda(X(e, 0), X(e, 2), X(e, 3)));
+      a = tri_area(X(e, 0), X(e, 1), X(e, 2)) + tri_area(X(e, 0), X(e, 2), X(e, 3));
     } else {
       lam.push_back(lo_lambda(X(e, 0), X(e, 1), X(e, 3)));
       lam.push_back(lo_lambda(X(e, 1), X(e, 2), X(e, 3)));
+      a = tri_area(X(e, 0), X(e, 1), X(e, 3)) + tri_area(X(e, 1), X(e, 2), X(e, 3));
     }
+    quad_area += a, area += a;
   }
-  if (npe == 4 && r.elements > 0) r.scaled_jacobian_min = sj_min, r.scaled_jacobian_mean = sj_sum / static_cast<double>(r.elements);
+  if (r.quads > 0) r.scaled_jacobian_min = sj_min, r.scaled_jacobian_mean = sj_sum / static_cast<double>(r.quads);
+  r.quad_area_fraction = area > 0 ? quad_area / area : 0;
   if (!lam.empty()) {
     double logsum = 0, mn = 1;
     size_t below = 0;

@@ -99,6 +99,7 @@ int main(void) {
   FIELD(wefm_mesh_options, corner_angle_deg);
   FIELD(wefm_mesh_options, min_angle_deg);
   FIELD(wefm_mesh_options, max_elements);
+  FIELD(wefm_mesh_options, elements);
   SIZE(wefm_mesh_report);
   FIELD(wefm_mesh_report, struct_size);
   FIELD(wefm_mesh_report, nodes);
@@ -115,5 +116,7 @@ int main(void) {
   FIELD(wefm_mesh_report, time_mesh);
   FIELD(wefm_mesh_report, time_smooth);
   FIELD(wefm_mesh_report, time_map);
+  FIELD(wefm_mesh_report, quads);
+  FIELD(wefm_mesh_report, quad_area_fraction);
   return 0;
 }

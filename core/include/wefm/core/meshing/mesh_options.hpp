@@ -9,6 +9,9 @@
 namespace wefm::meshing {
 
 enum class MeshType : int { Free = 0, Transfinite = 1 };
+// Free meshes: triangles; quads where pairs of triangles make good ones (a triangle left as four
+// nodes, the last -1); or quads only.
+enum class Elements : int { Triangles = 0, QuadDominant = 1, Quads = 2 };
 
 struct MeshOptions {
   MeshType type = MeshType::Free;
@@ -19,6 +22,7 @@ struct MeshOptions {
   double corner_angle_deg = 30;
   double min_angle_deg = 28;
   std::int64_t max_elements = 0;
+  Elements elements = Elements::Triangles;
 };
 
 struct MeshReport {
@@ -28,6 +32,8 @@ struct MeshReport {
   double scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
   double wiggle_max = 0, wiggle_mean = 0;
   double time_boundary = 0, time_mesh = 0, time_smooth = 0, time_map = 0;
+  std::int64_t quads = 0;               // elements with four nodes
+  double quad_area_fraction = 0;        // their share of the mesh's 3D area
   std::int64_t outside_nodes = 0;  // nodes whose UV fell outside the solved domain (mapped to the nearest point)
 };
 

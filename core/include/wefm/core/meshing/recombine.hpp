@@ -1,0 +1,31 @@
+#pragma once
+// Quads from a free triangle mesh of the domain (METHOD §9.5): pairs of triangles across an edge
+// become quads where the quad is good in 3D, chosen as a large matching of the triangles' dual
+// graph; then, for all-quad meshes, every element is split into quads at its edge midpoints and
+// centre. The quads are judged in 3D, where they will be used, and kept convex in UV, where the
+// mesh lives.
+#include "wefm/core/meshing/domain_mesh.hpp"
+#include "wefm/core/meshing/surface_map.hpp"
+
+namespace wefm::meshing {
+
+// Turns the triangles of `m` (nodes_per_element 3) into quads where two triangles sharing an edge
+// inside the face make a quad convex in UV with a 3D scaled Jacobian of at least `min_quality`.
+// Afterwards nodes_per_element is 4 and a triangle left over has -1 as its fourth node. The nodes
+// are not moved (smooth_quads does that, inside the face only).
+void recombine(DomainMesh& m, double min_quality);
+
+// Moves the nodes inside the face (from boundary_nodes on) of a quad-dominant or all-quad mesh
+// towards the mean of their neighbours in UV, `passes` times, each move kept only where the worst
+// element around the node gets no worse and the elements round it better on the whole (scaled
+// Jacobian of quads, Lo lambda of triangles, in 3D; quads kept convex in UV).
+void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes);
+
+// Splits every element of `m` (nodes_per_element 4, triangles with -1 as fourth node) into quads:
+// a quad into four, a triangle into three, at the midpoints of its edges and its centre. Inside
+// the face a new node is the lift of its UV; on the boundary, the midpoint of the 3D chord, so two
+// faces given the same nodes on an edge still share them. Nodes 0..boundary_nodes-1 stay the
+// boundary's, now with its midpoints.
+void split_into_quads(DomainMesh& m, const SurfaceMap& map);
+
+}  // namespace wefm::meshing

@@ -1,0 +1,289 @@
+#include "wefm/core/meshing/recombine.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <deque>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "wefm/core/meshing/mesh_quality.hpp"
+
+namespace wefm::meshing {
+
+namespace {
+
+// Past this many triangles reached, the search for an alternating path from one unmatched triangle
+// gives up: a path that long would shuffle quads across the face for one more quad, and the search
+// over every leftover triangle must stay near linear in the mesh.
+constexpr size_t kSearchLimit = 400;
+
+std::uint64_t edge_key(Index a, Index b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+double cross2(const P2& o, const P2& a, const P2& b) { return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x(); }
+
+// A quad a, b, c, d counter-clockwise in UV with every corner turning left (strictly convex).
+bool convex_in_uv(const std::vector<P2>& uv, const std::array<Index, 4>& q) {
+  for (int k = 0; k < 4; ++k)
+    if (!(cross2(uv[static_cast<size_t>(q[k])], uv[static_cast<size_t>(q[(k + 1) % 4])], uv[static_cast<size_t>(q[(k + 3) % 4])]) > 0))
+      return false;
+  return true;
+}
+
+// A pair of triangles that may become a quad, and how good the quad would be.
+struct Candidate {
+  Index t1, t2;
+  std::array<Index, 4> quad;
+  double quality;
+};
+
+// Candidate quads over each edge inside the face, with the triangles' dual graph (per triangle, its
+// candidates by index).
+std::vector<Candidate> candidates(const DomainMesh& m, double min_quality, std::vector<std::vector<size_t>>& of_triangle) {
+  const size_t nt = m.elements.size() / 3;
+  std::unordered_map<std::uint64_t, std::pair<Index, int>> first;  // edge -> triangle, its corner before the edge
+  first.reserve(3 * nt);
+  std::vector<Candidate> out;
+  of_triangle.assign(nt, {});
+  const Index* T = m.elements.data();
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = T[3 * t + static_cast<size_t>(k)], b = T[3 * t + static_cast<size_t>((k + 1) % 3)];
+      const auto [it, fresh] = first.emplace(edge_key(a, b), std::pair<Index, int>{static_cast<Index>(t), k});
+      if (fresh) continue;
+      // t1 = (a1, b1, c) holds the edge a1 -> b1, t2 = (b1, a1, d) the other way: the quad is
+      // a1, d, b1, c counter-clockwise.
+      const Index t1 = it->second.first;
+      const int k1 = it->second.second;
+      const Index a1 = T[3 * static_cast<size_t>(t1) + static_cast<size_t>(k1)];
+      const Index b1 = T[3 * static_cast<size_t>(t1) + static_cast<size_t>((k1 + 1) % 3)];
+      const Index c = T[3 * static_cast<size_t>(t1) + static_cast<size_t>((k1 + 2) % 3)];
+      const Index d = T[3 * t + static_cast<size_t>((k + 2) % 3)];
+      if (a1 != b || b1 != a) continue;  // not one orientation: no quad across it
+      const std::array<Index, 4> q{a1, d, b1, c};
+      if (!convex_in_uv(m.uv, q)) continue;
+      const double quality = scaled_jacobian(m.xyz[static_cast<size_t>(q[0])], m.xyz[static_cast<size_t>(q[1])],
+                                             m.xyz[static_cast<size_t>(q[2])], m.xyz[static_cast<size_t>(q[3])]);
+      if (!(quality >= min_quality)) continue;
+      of_triangle[static_cast<size_t>(t1)].push_back(out.size());
+      of_triangle[t].push_back(out.size());
+      out.push_back({t1, static_cast<Index>(t), q, quality});
+    }
+  return out;
+}
+
+Index other(const Candidate& c, Index t) { return c.t1 == t ? c.t2 : c.t1; }
+
+// From an unmatched triangle, a shortest path that alternates free and matched pairs and ends at
+// another unmatched triangle; flipping it makes one more quad. Triangles reached at odd distance
+// are not searched from again, so a path through an odd cycle may be missed: the leftover
+// triangles are then what a maximum matching might have avoided.
+bool augment(Index start, const std::vector<Candidate>& cand, const std::vector<std::vector<size_t>>& of_triangle,
+             std::vector<std::int64_t>& mate, std::vector<std::uint32_t>& seen, std::uint32_t stamp) {
+  struct Step {
+    Index outer;         // a triangle searched from
+    std::int64_t via;    // the candidate that reached its partner, or -1 at the start
+    std::int64_t back;   // the step before
+  };
+  std::vector<Step> steps{{start, -1, -1}};
+  seen[static_cast<size_t>(start)] = stamp;
+  for (size_t head = 0; head < steps.size() && steps.size() < kSearchLimit; ++head) {
+    const Index x = steps[head].outer;
+    for (size_t ci : of_triangle[static_cast<size_t>(x)]) {
+      if (mate[static_cast<size_t>(x)] == static_cast<std::int64_t>(ci)) continue;
+      const Index y = other(cand[ci], x);
+      if (seen[static_cast<size_t>(y)] == stamp) continue;
+      seen[static_cast<size_t>(y)] = stamp;
+      if (mate[static_cast<size_t>(y)] < 0) {
+        // Flip back to the start: x takes y, and each outer triangle's old partner takes the
+        // triangle the search came from.
+        std::int64_t s = static_cast<std::int64_t>(head);
+        std::int64_t take = static_cast<std::int64_t>(ci);
+        while (s >= 0) {
+          const Candidate& c = cand[static_cast<size_t>(take)];
+          mate[static_cast<size_t>(c.t1)] = take, mate[static_cast<size_t>(c.t2)] = take;
+          take = steps[static_cast<size_t>(s)].via;
+          s = steps[static_cast<size_t>(s)].back;
+        }
+        return true;
+      }
+      const Index z = other(cand[static_cast<size_t>(mate[static_cast<size_t>(y)])], y);
+      if (seen[static_cast<size_t>(z)] == stamp) continue;
+      seen[static_cast<size_t>(z)] = stamp;
+      steps.push_back({z, static_cast<std::int64_t>(ci), static_cast<std::int64_t>(head)});
+    }
+  }
+  return false;
+}
+
+// The quality of element e in 3D: a quad's scaled Jacobian, a triangle's Lo lambda (both 1 at best,
+// 0 or less when degenerate or folded); -1 when it is not convex (a quad) or inverted (a triangle)
+// in UV, where it must stay a valid element of the domain.
+double element_quality(const DomainMesh& m, size_t e) {
+  const Index* v = &m.elements[4 * e];
+  auto X = [&](int k) -> const Vec3& { return m.xyz[static_cast<size_t>(v[k])]; };
+  if (v[3] < 0) {
+    if (!(cross2(m.uv[static_cast<size_t>(v[0])], m.uv[static_cast<size_t>(v[1])], m.uv[static_cast<size_t>(v[2])]) > 0)) return -1;
+    return lo_lambda(X(0), X(1), X(2));
+  }
+  if (!convex_in_uv(m.uv, {v[0], v[1], v[2], v[3]})) return -1;
+  return scaled_jacobian(X(0), X(1), X(2), X(3));
+}
+
+}  // namespace
+
+void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
+  if (m.nodes_per_element != 4) return;
+  const size_t ne = m.elements.size() / 4, n = m.uv.size();
+  std::vector<std::vector<size_t>> around(n);
+  std::vector<std::vector<Index>> neighbours(n);
+  for (size_t e = 0; e < ne; ++e) {
+    const int c = m.elements[4 * e + 3] < 0 ? 3 : 4;
+    for (int k = 0; k < c; ++k) {
+      const auto a = static_cast<size_t>(m.elements[4 * e + static_cast<size_t>(k)]);
+      around[a].push_back(e);
+      neighbours[a].push_back(m.elements[4 * e + static_cast<size_t>((k + 1) % c)]);
+      neighbours[a].push_back(m.elements[4 * e + static_cast<size_t>((k + c - 1) % c)]);
+    }
+  }
+  for (auto& nb : neighbours) {
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  }
+  for (int pass = 0; pass < passes; ++pass) {
+    for (size_t i = static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0)); i < n; ++i) {
+      if (neighbours[i].empty()) continue;
+      double worst = 2, sum = 0;
+      for (size_t e : around[i]) {
+        const double q = element_quality(m, e);
+        worst = std::min(worst, q), sum += q;
+      }
+      P2 target = P2::Zero();
+      for (Index j : neighbours[i]) target += m.uv[static_cast<size_t>(j)];
+      target /= static_cast<double>(neighbours[i].size());
+      const P2 uv0 = m.uv[i];
+      const Vec3 xyz0 = m.xyz[i], normal0 = m.normal[i];
+      // The whole step, else half of it: kept only where the worst element around the node is no
+      // worse and the elements are better on the whole.
+      bool kept = false;
+      for (double t : {1.0, 0.5}) {
+        m.uv[i] = uv0 + t * (target - uv0);
+        Vec3 x, nrm;
+        if (!map.lift(m.uv[i], x, &nrm)) continue;
+        m.xyz[i] = x, m.normal[i] = nrm;
+        double w = 2, su = 0;
+        for (size_t e : around[i]) {
+          const double q = element_quality(m, e);
+          w = std::min(w, q), su += q;
+        }
+        if (w >= worst && su > sum) {
+          kept = true;
+          break;
+        }
+      }
+      if (!kept) m.uv[i] = uv0, m.xyz[i] = xyz0, m.normal[i] = normal0;
+    }
+  }
+}
+
+void recombine(DomainMesh& m, double min_quality) {
+  if (m.nodes_per_element != 3) return;
+  const size_t nt = m.elements.size() / 3;
+  std::vector<std::vector<size_t>> of_triangle;
+  const std::vector<Candidate> cand = candidates(m, min_quality, of_triangle);
+  // The best quads first, then one more quad per alternating path from each leftover triangle.
+  std::vector<size_t> order(cand.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cand[a].quality > cand[b].quality; });
+  std::vector<std::int64_t> mate(nt, -1);
+  for (size_t i : order) {
+    const Candidate& c = cand[i];
+    if (mate[static_cast<size_t>(c.t1)] < 0 && mate[static_cast<size_t>(c.t2)] < 0)
+      mate[static_cast<size_t>(c.t1)] = mate[static_cast<size_t>(c.t2)] = static_cast<std::int64_t>(i);
+  }
+  std::vector<std::uint32_t> seen(nt, 0);
+  std::uint32_t stamp = 0;
+  for (size_t t = 0; t < nt; ++t)
+    if (mate[t] < 0 && !of_triangle[t].empty()) augment(static_cast<Index>(t), cand, of_triangle, mate, seen, ++stamp);
+  std::vector<Index> out;
+  out.reserve(4 * nt);
+  for (size_t t = 0; t < nt; ++t) {
+    if (mate[t] < 0) {
+      out.insert(out.end(), {m.elements[3 * t], m.elements[3 * t + 1], m.elements[3 * t + 2], -1});
+      continue;
+    }
+    const Candidate& c = cand[static_cast<size_t>(mate[t])];
+    if (static_cast<size_t>(c.t1) == t) out.insert(out.end(), c.quad.begin(), c.quad.end());  // once per pair
+  }
+  m.elements = std::move(out);
+  m.nodes_per_element = 4;
+}
+
+void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
+  if (m.nodes_per_element != 4) return;
+  const size_t ne = m.elements.size() / 4;
+  const size_t n0 = m.uv.size();
+  const Index nb = m.boundary_nodes;
+  // Edges used once are on the boundary.
+  std::unordered_map<std::uint64_t, int> uses;
+  auto corners = [&](size_t e) { return m.elements[4 * e + 3] < 0 ? 3 : 4; };
+  for (size_t e = 0; e < ne; ++e)
+    for (int k = 0, n = corners(e); k < n; ++k) uses[edge_key(m.elements[4 * e + static_cast<size_t>(k)], m.elements[4 * e + static_cast<size_t>((k + 1) % n)])]++;
+  // New nodes, numbered after the old ones for now; `boundary` marks those on the boundary.
+  std::vector<P2> uv = m.uv;
+  std::vector<Vec3> xyz = m.xyz, normal = m.normal;
+  normal.resize(n0, Vec3::Zero());
+  std::vector<char> boundary(n0, 0);
+  for (Index k = 0; k < nb && static_cast<size_t>(k) < n0; ++k) boundary[static_cast<size_t>(k)] = 1;
+  std::unordered_map<std::uint64_t, Index> mid;
+  auto add = [&](const P2& p, bool on_boundary, const Vec3* chord) {
+    Vec3 x, n = Vec3::Zero();
+    map.lift(p, x, &n);
+    uv.push_back(p), xyz.push_back(chord ? *chord : x), normal.push_back(n), boundary.push_back(on_boundary ? 1 : 0);
+    return static_cast<Index>(uv.size() - 1);
+  };
+  auto midpoint = [&](Index a, Index b) {
+    const auto [it, fresh] = mid.emplace(edge_key(a, b), 0);
+    if (!fresh) return it->second;
+    const bool on_boundary = uses[edge_key(a, b)] == 1;
+    const Vec3 chord = 0.5 * (m.xyz[static_cast<size_t>(a)] + m.xyz[static_cast<size_t>(b)]);
+    it->second = add(0.5 * (m.uv[static_cast<size_t>(a)] + m.uv[static_cast<size_t>(b)]), on_boundary, on_boundary ? &chord : nullptr);
+    return it->second;
+  };
+  std::vector<Index> out;
+  out.reserve(4 * 4 * ne);
+  for (size_t e = 0; e < ne; ++e) {
+    const int n = corners(e);
+    const Index* v = &m.elements[4 * e];
+    P2 centre = P2::Zero();
+    for (int k = 0; k < n; ++k) centre += m.uv[static_cast<size_t>(v[k])];
+    centre /= n;
+    Index ms[4];
+    for (int k = 0; k < n; ++k) ms[k] = midpoint(v[k], v[(k + 1) % n]);
+    const Index c = add(centre, false, nullptr);
+    for (int k = 0; k < n; ++k) out.insert(out.end(), {v[k], ms[k], c, ms[(k + n - 1) % n]});
+  }
+  // Boundary nodes first, as free meshes number them.
+  std::vector<Index> renum(uv.size());
+  Index next = 0;
+  for (int pass = 1; pass >= 0; --pass)
+    for (size_t k = 0; k < uv.size(); ++k)
+      if (boundary[k] == pass) renum[k] = next++;
+  m.uv.assign(uv.size(), P2::Zero());
+  m.xyz.assign(uv.size(), Vec3::Zero());
+  m.normal.assign(uv.size(), Vec3::Zero());
+  Index boundary_count = 0;
+  for (size_t k = 0; k < uv.size(); ++k) {
+    const auto r = static_cast<size_t>(renum[k]);
+    m.uv[r] = uv[k], m.xyz[r] = xyz[k], m.normal[r] = normal[k];
+    boundary_count += boundary[k];
+  }
+  for (Index& i : out) i = renum[static_cast<size_t>(i)];
+  m.elements = std::move(out);
+  m.boundary_nodes = boundary_count;
+}
+
+}  // namespace wefm::meshing

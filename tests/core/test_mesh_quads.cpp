@@ -1,0 +1,161 @@
+// Quad-dominant and all-quad free meshes (METHOD §9.5): triangles paired into quads judged in 3D,
+// then, for all-quad, every element split at its edge midpoints and centre.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "mesh_faces.hpp"
+
+using namespace wefm;
+
+namespace {
+
+// Corners of element e: 3 for a quad-dominant mesh's triangle (fourth node -1), else 4.
+size_t corners(const meshing::DomainMesh& dm, size_t e) { return dm.elements[4 * e + 3] < 0 ? 3 : 4; }
+
+double area3(const meshing::DomainMesh& dm, size_t e) {
+  auto X = [&](size_t k) { return dm.xyz[static_cast<size_t>(dm.elements[4 * e + k])]; };
+  double a = 0.5 * (X(1) - X(0)).cross(X(2) - X(0)).norm();
+  if (corners(dm, e) == 4) a += 0.5 * (X(2) - X(0)).cross(X(3) - X(0)).norm();
+  return a;
+}
+
+double signed_area_uv(const meshing::DomainMesh& dm, size_t e) {
+  double a = 0;
+  const size_t n = corners(dm, e);
+  for (size_t k = 0; k < n; ++k) {
+    const meshing::P2& p = dm.uv[static_cast<size_t>(dm.elements[4 * e + k])];
+    const meshing::P2& q = dm.uv[static_cast<size_t>(dm.elements[4 * e + (k + 1) % n])];
+    a += p.x() * q.y() - p.y() * q.x();
+  }
+  return 0.5 * a;
+}
+
+// Every edge of the mesh: how many elements use it (each way round counted apart).
+std::map<std::pair<Index, Index>, int> directed_edges(const meshing::DomainMesh& dm) {
+  std::map<std::pair<Index, Index>, int> out;
+  for (size_t e = 0; e < dm.elements.size() / 4; ++e)
+    for (size_t k = 0, n = corners(dm, e); k < n; ++k) out[{dm.elements[4 * e + k], dm.elements[4 * e + (k + 1) % n]}]++;
+  return out;
+}
+
+// Conforming and oriented: each directed edge used once, and an edge used one way round only on the
+// boundary (nodes 0..boundary_nodes-1).
+void check_conforming(const meshing::DomainMesh& dm) {
+  const auto edges = directed_edges(dm);
+  int boundary = 0;
+  for (const auto& [e, n] : edges) {
+    CAPTURE(e.first);
+    CAPTURE(e.second);
+    REQUIRE(n == 1);
+    if (!edges.count({e.second, e.first})) {
+      ++boundary;
+      CHECK(e.first < dm.boundary_nodes);
+      CHECK(e.second < dm.boundary_nodes);
+    }
+  }
+  CHECK(boundary > 0);
+}
+
+double face_area(const test::SolvedFace& f) {
+  double a = 0;
+  for (size_t t = 0; t < f.mesh().triangles.size(); ++t) a += triangle_area(f.mesh(), static_cast<Index>(t));
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("quad-dominant: a disk with holes is nearly all quads, each convex in UV and good in 3D, the mesh conforming") {
+  const auto f = test::solved(test::disk_with_holes());
+  meshing::MeshOptions o;
+  o.size = 0.06;
+  const auto tri = f.mesh_domain(o);
+  o.elements = meshing::Elements::QuadDominant;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("disk with holes: ", dm.report.quads, " quads of ", dm.report.elements, " elements, area in quads ", dm.report.quad_area_fraction,
+          ", scaled Jacobian min ", dm.report.scaled_jacobian_min, " mean ", dm.report.scaled_jacobian_mean);
+  REQUIRE(dm.nodes_per_element == 4);
+  // The same nodes as the triangle mesh: pairing moves none.
+  CHECK(dm.xyz.size() == tri.xyz.size());
+  CHECK(dm.report.elements == static_cast<std::int64_t>(dm.elements.size() / 4));
+  CHECK(2 * dm.report.quads + (dm.report.elements - dm.report.quads) == tri.report.elements);
+  CHECK(dm.report.quad_area_fraction >= 0.95);
+  CHECK(dm.report.scaled_jacobian_min >= 0.3);
+  CHECK(dm.report.scaled_jacobian_mean >= 0.7);
+  double area = 0;
+  for (size_t e = 0; e < dm.elements.size() / 4; ++e) {
+    CHECK(signed_area_uv(dm, e) > 0);
+    area += area3(dm, e);
+  }
+  CHECK(area == doctest::Approx(face_area(f)).epsilon(1e-9));
+  check_conforming(dm);
+}
+
+TEST_CASE("all-quad: every element a quad, the boundary's midpoints on the boundary, the mesh conforming") {
+  const auto f = test::solved(test::saddle(24), 1.0);
+  meshing::MeshOptions o;
+  o.size = 0.1;
+  o.elements = meshing::Elements::Quads;
+  const auto dm = f.mesh_domain(o);
+  MESSAGE("saddle, all quads: ", dm.report.elements, " quads, scaled Jacobian min ", dm.report.scaled_jacobian_min, " mean ",
+          dm.report.scaled_jacobian_mean);
+  REQUIRE(dm.nodes_per_element == 4);
+  CHECK(dm.report.quads == dm.report.elements);
+  CHECK(dm.report.quad_area_fraction == 1.0);
+  CHECK(std::all_of(dm.elements.begin(), dm.elements.end(), [&](Index i) { return i >= 0 && i < static_cast<Index>(dm.xyz.size()); }));
+  CHECK(dm.report.scaled_jacobian_min > 0);
+  for (size_t e = 0; e < dm.elements.size() / 4; ++e) CHECK(signed_area_uv(dm, e) > 0);
+  // Interior nodes lie on the triangulation; the boundary's midpoints on the chords between their
+  // neighbours, off the curved sides by a segment's sag only.
+  meshing::DomainMesh inside = dm;
+  inside.xyz.erase(inside.xyz.begin(), inside.xyz.begin() + dm.boundary_nodes);
+  CHECK(test::max_off_surface(f.mesh(), inside) <= 1e-9);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-3);
+  check_conforming(dm);
+}
+
+TEST_CASE("quads from caller edge nodes: the given nodes stay, and all-quad adds the same midpoints on either side") {
+  const auto f = test::solved(test::unit_square(4));
+  const Topology& tp = f.topo();
+  REQUIRE(tp.edges.size() == 1);
+  // Uneven nodes round the whole boundary, as a neighbouring face would give them: the chain from
+  // the edge's vertex (0, 0) round by the corners, which stay nodes of their own.
+  std::vector<Vec3> chain;
+  meshing::EdgeNodes given;
+  const int n = 11;
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < n; ++k) {
+      const double s = static_cast<double>(k) / n, g = s * s * (3 - 2 * s);  // graded along each side
+      const Vec3 p = side == 0 ? Vec3(g, 0, 0) : side == 1 ? Vec3(1, g, 0) : side == 2 ? Vec3(1 - g, 1, 0) : Vec3(0, 1 - g, 0);
+      chain.push_back(p);
+      if (k > 0) given[0].push_back(p);
+    }
+  chain.push_back(Vec3(0, 0, 0));
+  meshing::MeshOptions o;
+  o.size = 0.08;
+  o.elements = meshing::Elements::Quads;
+  const auto dm = f.mesh_domain(o, given);
+  REQUIRE(dm.nodes_per_element == 4);
+  // Each given node, and each midpoint of two consecutive given nodes, is a boundary node.
+  auto has = [&](const Vec3& p) {
+    for (Index k = 0; k < dm.boundary_nodes; ++k)
+      if ((dm.xyz[static_cast<size_t>(k)] - p).norm() < 1e-12) return true;
+    return false;
+  };
+  for (size_t k = 0; k + 1 < chain.size(); ++k) {
+    CHECK(has(chain[k]));
+    CHECK(has(0.5 * (chain[k] + chain[k + 1])));
+  }
+  CHECK(dm.boundary_nodes == static_cast<Index>(2 * (chain.size() - 1)));
+  check_conforming(dm);
+}
+
+TEST_CASE("an unknown element kind is refused") {
+  const auto f = test::solved(test::unit_square(4));
+  meshing::MeshOptions o;
+  o.size = 0.2;
+  o.elements = static_cast<meshing::Elements>(7);
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+}
