@@ -1,10 +1,10 @@
 #include "wefm/core/meshing/free_mesh.hpp"
 
-#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
+#include "wefm/core/sys/clock.hpp"
 #include "wefm/core/sys/error.hpp"
 #include "wefm/core/meshing/frontal.hpp"
 #include "wefm/core/meshing/smoothing.hpp"
@@ -12,10 +12,6 @@
 
 namespace wefm::meshing {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Triangles the front left with sqrt(3) circumradius / size above this get their circumcentre.
 constexpr double kRefineRatio = 1.6;
@@ -108,7 +104,7 @@ void split_spanning_edges(Triangulation& tr, const std::vector<Vec3>& xyz, Index
 
 void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, double expected_elements,
                DomainMesh& out, const MeshControl& control) {
-  auto t0 = std::chrono::steady_clock::now();
+  double t0 = now();
   std::vector<P2> pts;
   std::vector<std::array<Index, 2>> segs;
   boundary_nodes(loops, pts, out.xyz, segs);
@@ -154,12 +150,12 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   out.uv.resize(static_cast<size_t>(tr.node_count()));
   for (Index v = 0; v < tr.node_count(); ++v) out.uv[static_cast<size_t>(v)] = tr.node(v);
   auto tris = tr.triangles();
-  out.report.time_mesh = seconds_since(t0);
+  out.report.time_mesh = now() - t0;
 
   control.check(0.8);
-  t0 = std::chrono::steady_clock::now();
+  t0 = now();
   improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, o.smoothing_iterations, map, control, span_floor);
-  out.report.time_smooth = seconds_since(t0);
+  out.report.time_smooth = now() - t0;
   out.nodes_per_element = 3;
   for (const auto& t : tris) out.elements.insert(out.elements.end(), t.begin(), t.end());
 }

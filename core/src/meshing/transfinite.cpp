@@ -1,10 +1,10 @@
 #include "wefm/core/meshing/transfinite.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
+#include "wefm/core/sys/clock.hpp"
 #include "wefm/core/meshing/size_field.hpp"
 #include "wefm/core/sys/error.hpp"
 
@@ -106,7 +106,7 @@ std::array<LoopNodes, 4> uniform_sides(const TriMesh& mesh, const Topology& topo
 
 void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
                       const EdgeNodes& given, DomainMesh& out) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const double t0 = now();
   const auto c = transfinite_corners(topo, uv, o.corners);
   std::array<LoopNodes, 4> side = given.empty() ? uniform_sides(mesh, topo, uv, o, c) : sides_from_given(mesh, topo, uv, o, given, c);
   const Index n = static_cast<Index>(side[0].uv.size()) - 1, m = static_cast<Index>(side[1].uv.size()) - 1;
@@ -144,15 +144,15 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
       else if (i == 0) out.uv[k] = L.uv[jj], out.xyz[k] = L.xyz[jj], on_side[k] = 1;
       else if (i == n) out.uv[k] = R.uv[jj], out.xyz[k] = R.xyz[jj], on_side[k] = 1;
     }
-  out.report.time_mesh = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto t1 = std::chrono::steady_clock::now();
+  out.report.time_mesh = now() - t0;
+  const double t1 = now();
   out.normal.resize(out.uv.size());
   for (size_t k = 0; k < out.uv.size(); ++k) {
     Vec3 x;
     if (!map.lift(out.uv[k], x, &out.normal[k])) out.report.outside_nodes++;
     if (!on_side[k]) out.xyz[k] = x;
   }
-  out.report.time_map = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  out.report.time_map = now() - t1;
   // The grid's own normal (cross product of its two rail directions) for the wiggle factor: exact
   // where the grid is, unlike vertex normals near a facetted boundary.
   auto X = [&](Index i, Index j) { return out.xyz[static_cast<size_t>(id(std::clamp<Index>(i, 0, n), std::clamp<Index>(j, 0, m)))]; };
