@@ -39,6 +39,9 @@ Vec3 log_lambda_gradient(const std::vector<Vec3>& xyz, const std::vector<std::ar
 
 }  // namespace
 
+// One function of about 100 lines: the gradient, the parabola step along it and the acceptance
+// share the node's star cache and the pass's bookkeeping, which steps of their own would each take
+// and hand back.
 std::int64_t optimise_nodes(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<std::array<Index, 3>>& tris, Index fixed,
                             const SurfaceMap& map, double floor) {
   const size_t n = uv.size();

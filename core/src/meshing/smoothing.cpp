@@ -267,6 +267,8 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
 // A needle between a fine boundary chain and a coarse one across a strip narrower than h has no
 // interior node at all, and a sliver whose apex sits on a boundary edge cannot leave it while its
 // other triangles hold it there: no move of the existing nodes mends either.
+// One function of about 100 lines: the split, its moves and its undo share the pass's bookkeeping
+// (the triangles added per node, those touched, the stars), which steps of their own would pass round.
 std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
   std::vector<Index> bad;
   for (Index t = 0; t < static_cast<Index>(tris.size()); ++t) {
