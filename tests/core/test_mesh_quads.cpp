@@ -159,3 +159,15 @@ TEST_CASE("an unknown element kind is refused") {
   o.elements = static_cast<meshing::Elements>(7);
   CHECK_THROWS_AS(f.mesh_domain(o), Error);
 }
+
+TEST_CASE("max_elements caps the all-quad mesh's quads, not only the triangles before the split") {
+  const auto f = test::solved(test::unit_square(4));
+  meshing::MeshOptions o;
+  o.size = 0.1;
+  const auto tri = f.mesh_domain(o);
+  o.elements = meshing::Elements::Quads;
+  o.max_elements = tri.report.elements;  // enough for the triangles, not for about twice as many quads
+  CHECK_THROWS_AS(f.mesh_domain(o), Error);
+  o.max_elements = 4 * tri.report.elements;
+  CHECK(f.mesh_domain(o).report.elements <= o.max_elements);
+}

@@ -67,7 +67,11 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
     if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 3) > o.max_elements)
       fail(Errc::invalid_argument, "the free mesh needs more than max_elements = " + std::to_string(o.max_elements) + " triangles at size " + std::to_string(o.size));
     if (o.elements != Elements::Triangles) recombine(out, kMinQuadQuality);
-    if (o.elements == Elements::Quads) split_into_quads(out, map);
+    if (o.elements == Elements::Quads) {
+      split_into_quads(out, map);
+      if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 4) > o.max_elements)
+        fail(Errc::invalid_argument, "the all-quad mesh needs more than max_elements = " + std::to_string(o.max_elements) + " quads at size " + std::to_string(o.size));
+    }
     if (o.elements != Elements::Triangles) smooth_quads(out, map, o.smoothing_iterations);
   }
   // A node the mapping could not place (NaN from the mesher) would reach the caller as garbage.
