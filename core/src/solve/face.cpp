@@ -1,10 +1,10 @@
 #include "wefm/core/solve/face.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <string>
 
 #include "wefm/core/solve/annulus_choice.hpp"
+#include "wefm/core/sys/clock.hpp"
 #include "wefm/core/sys/error.hpp"
 
 namespace wefm {
@@ -163,10 +163,10 @@ void Face::clear_constraints() {
 
 void Face::solve(const ProgressFn& progress, const std::atomic<bool>* cancel) {
   require_mesh("solving");
-  const auto t0 = std::chrono::steady_clock::now();
+  const double t0 = now();
   if (progress && !progress(0.0, "topology")) fail(Errc::cancelled, "cancelled by the progress callback before the topology was built");
   const Topology& tp = topology();
-  const double t_topo = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double t_topo = now() - t0;
   FlattenInput in;
   in.mesh = &mesh_;
   in.topo = &tp;
