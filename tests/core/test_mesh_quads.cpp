@@ -104,6 +104,12 @@ TEST_CASE("all-quad: every element a quad, the boundary's midpoints on the bound
   REQUIRE(dm.nodes_per_element == 4);
   CHECK(dm.report.quads == dm.report.elements);
   CHECK(dm.report.quad_area_fraction == 1.0);
+  // Split from the quad-dominant mesh at the size asked for: the quads' sides are about half of it,
+  // as Gmsh's subdivision into quads gives.
+  double sides = 0;
+  for (size_t e = 0; e < dm.elements.size(); e += 4)
+    for (size_t k = 0; k < 4; ++k) sides += (dm.xyz[static_cast<size_t>(dm.elements[e + k])] - dm.xyz[static_cast<size_t>(dm.elements[e + (k + 1) % 4])]).norm();
+  CHECK(sides / static_cast<double>(dm.elements.size()) == doctest::Approx(o.size / 2).epsilon(0.25));
   CHECK(std::all_of(dm.elements.begin(), dm.elements.end(), [&](Index i) { return i >= 0 && i < static_cast<Index>(dm.xyz.size()); }));
   CHECK(dm.report.scaled_jacobian_min > 0);
   for (size_t e = 0; e < dm.elements.size() / 4; ++e) CHECK(signed_area_uv(dm, e) > 0);
@@ -112,7 +118,7 @@ TEST_CASE("all-quad: every element a quad, the boundary's midpoints on the bound
   meshing::DomainMesh inside = dm;
   inside.xyz.erase(inside.xyz.begin(), inside.xyz.begin() + dm.boundary_nodes);
   CHECK(test::max_off_surface(f.mesh(), inside) <= 1e-9);
-  CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-3);
+  CHECK(test::max_off_surface(f.mesh(), dm) <= 3e-3);
   check_conforming(dm);
 }
 
@@ -164,10 +170,11 @@ TEST_CASE("max_elements caps the all-quad mesh's quads, not only the triangles b
   const auto f = test::solved(test::unit_square(4));
   meshing::MeshOptions o;
   o.size = 0.1;
-  const auto tri = f.mesh_domain(o);
   o.elements = meshing::Elements::Quads;
-  o.max_elements = tri.report.elements;  // enough for the triangles, not for about twice as many quads
+  const auto quads = f.mesh_domain(o);
+  // Enough for the triangles the quads are split from (about half as many), not for the quads.
+  o.max_elements = quads.report.elements - 1;
   CHECK_THROWS_AS(f.mesh_domain(o), Error);
-  o.max_elements = 4 * tri.report.elements;
-  CHECK(f.mesh_domain(o).report.elements <= o.max_elements);
+  o.max_elements = quads.report.elements;
+  CHECK(f.mesh_domain(o).report.elements == quads.report.elements);
 }

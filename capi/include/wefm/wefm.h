@@ -744,9 +744,11 @@ typedef enum wefm_elements {
                                          Jacobian >= 0.3, convex in UV); nodes_per_element 4, and a triangle
                                          left over has -1 as its fourth node */
   WEFM_ELEMENTS_QUADS = 2           /**< quad-dominant, then every element split into quads at its edge
-                                         midpoints and centre (nodes_per_element 4, all quads); the boundary
-                                         gets a node at each segment's midpoint (of the 3D chord), so faces
-                                         given the same edge nodes still share theirs */
+                                         midpoints and centre (nodes_per_element 4, all quads, their sides
+                                         about size / 2, as Gmsh's subdivision gives: ask for twice the size
+                                         for quads of about `size`); the boundary gets a node at each
+                                         segment's midpoint (of the 3D chord), so faces given the same edge
+                                         nodes still share theirs */
 } wefm_elements;
 
 /** Options of wefm_face_mesh_domain(); fill with wefm_mesh_options_init() first. */
