@@ -80,10 +80,25 @@ namespace {
 
 }  // namespace
 
+#if defined(__linux__)
+namespace {
+
+// The stop signals are held before any shared library's initialiser runs (the executable's ELF
+// pre-init array comes first): OpenBLAS starts its pool threads while it loads, and a thread started
+// with SIGINT and SIGTERM open takes a Ctrl-C by their default action, ending the process before
+// main() has a handler (seen as exit -15 in cli.output_signals). Started after this, every such
+// thread inherits the held signals for good, so they reach the thread that opens them in main().
+void hold_before_libraries(int, char**, char**) { wefm_cli::hold_stop_signals(); }
+__attribute__((section(".preinit_array"), used)) void (*const kHoldBeforeLibraries)(int, char**, char**) = hold_before_libraries;
+
+}  // namespace
+#endif
+
 int main(int argc, char** argv) {
   // One handler for every command and stage (stop.hpp); the commands poll it. The signals are held
-  // over the re-exec, which resets handlers but keeps the mask and pending signals, so a Ctrl-C at
-  // that moment waits for the handler instead of killing the process.
+  // (from before the libraries load, above) over the re-exec, which resets handlers but keeps the
+  // mask and pending signals, so a Ctrl-C at that moment waits for the handler instead of killing
+  // the process.
   wefm_cli::hold_stop_signals();
   wefm_cli::reexec_with_huge_page_malloc(argc, argv);
   wefm_cli::install_stop_handlers();

@@ -6,8 +6,9 @@ the output is, every time, either the old file or the complete new one (apps/wef
 
 The old file is the face flattened at s = 0, the new one at s = 1, so the two differ in every vt
 line. Each run copies the old file into place, starts `wefm flatten --s 1` on it and sends, after a
-random delay within the measured length of a whole run (counted from the moment the tool holds
-SIGTERM, read from /proc: before that the loader, not the tool, is running), one of: SIGTERM (a clean stop: exit 6 or,
+random delay within the measured length of a whole run (counted from the moment every thread of
+the tool holds or handles SIGTERM, read from /proc: before that the loader, not the tool, is
+running; output_tests.wait_for_handlers), one of: SIGTERM (a clean stop: exit 6 or,
 when it came too late, 0), two SIGTERMs (the second ends the process at once) or SIGKILL. After a
 SIGTERM no temporary file may remain either; after a SIGKILL one may (nothing can remove it), but
 the target is still whole. ctest runs it on a mid-size face with a few kills; the closing check of
@@ -25,7 +26,9 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cli_tests  # noqa: E402
 import meshes  # noqa: E402
+from output_tests import wait_for_handlers  # noqa: E402  (every thread holds or handles SIGTERM)
 
 
 def grid_for(triangles):
@@ -46,33 +49,11 @@ def leftovers(folder, name):
     return glob.glob(os.path.join(folder, "." + name + ".tmp-*"))
 
 
-def wait_for_handler(pid, limit=60.0):
-    """Waits until the process holds or handles SIGTERM (/proc/PID/status, SigBlk or SigCgt): before
-    main() runs, the dynamic loader (slow under a sanitizer on a busy machine) has no handler yet and
-    SIGTERM rightly kills the process, which says nothing of the tool. Returns the seconds waited, or
-    None where /proc cannot tell (then the caller's delay starts at once)."""
-    bit = 1 << (signal.SIGTERM - 1)
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < limit:
-        try:
-            with open(f"/proc/{pid}/status") as f:
-                fields = dict(line.split(":", 1) for line in f if ":" in line)
-        except OSError:
-            return None
-        if "SigBlk" not in fields or "SigCgt" not in fields:
-            return None
-        if (int(fields["SigBlk"], 16) | int(fields["SigCgt"], 16)) & bit:
-            return time.monotonic() - t0
-        time.sleep(0.001)
-    return None
-
-
 def one_run(wefm, src, target, old, new, mode, delay):
     shutil.copyfile(old, target)
     p = subprocess.Popen([wefm, "flatten", src, "-o", target, "--s", "1", "-q"], stdout=subprocess.DEVNULL,
                          stderr=subprocess.PIPE, text=True)
-    if wait_for_handler(p.pid) is None:
-        time.sleep(0.1)  # no /proc: the old guess at how long the loader takes
+    wait_for_handlers(p)
     time.sleep(delay)
     if mode == "kill":
         p.send_signal(signal.SIGKILL)
@@ -119,6 +100,7 @@ def main():
     ap.add_argument("--signals", default="term,term2,kill")
     ap.add_argument("--keep", default=None, help="work in this folder and keep it (default: a temporary one)")
     a = ap.parse_args()
+    cli_tests.WEFM = os.path.abspath(a.wefm)  # the executable wait_for_handlers waits for
     seed = a.seed if a.seed is not None else random.randrange(1 << 30)
     random.seed(seed)
     modes = a.signals.split(",")
@@ -139,7 +121,7 @@ def main():
         failed = 0
         for k in range(a.kills):
             mode = modes[k % len(modes)]
-            # Counted from the moment the tool holds SIGTERM (wait_for_handler).
+            # Counted from the moment the tool holds SIGTERM (wait_for_handlers).
             delay = random.uniform(0.0, 1.1 * t_full)
             state, code, problems = one_run(a.wefm, src, target, old, new, mode, delay)
             print(f"kill {k + 1}: {mode:5s} after {delay:6.3f} s -> exit {code}, target is the {state} file"
