@@ -1,5 +1,6 @@
 #include "model_mesh.hpp"
 #include "wefm/common/lo_lambda.hpp"
+#include "wefm/common/scaled_jacobian.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -224,15 +225,18 @@ int64_t ModelMesh::drop_fins(const std::set<std::pair<int, int>>& alike) {
   if (!dropped) return 0;
   std::vector<int32_t> tris;
   std::vector<int> faces, tags;
+  std::vector<int64_t> quads;
   for (size_t t = 0; t < tri_face_.size(); ++t)
     if (!drop[t]) {
       tris.insert(tris.end(), &tris_[3 * t], &tris_[3 * t] + 3);
       faces.push_back(tri_face_[t]);
       tags.push_back(tri_tag_[t]);
+      quads.push_back(tri_quad_[t]);
     }
   tris_ = std::move(tris);
   tri_face_ = std::move(faces);
   tri_tag_ = std::move(tags);
+  tri_quad_ = std::move(quads);
   return dropped;
 }
 
@@ -245,7 +249,7 @@ std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int3
 }
 
 int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
-                            const std::vector<int>& triangle_tags) {
+                            const std::vector<int>& triangle_tags, const std::vector<int32_t>& quad_of) {
   face_tags_.push_back(face_tag);
   for (int tag : std::set<int>(triangle_tags.begin(), triangle_tags.end()))
     if (tag != face_tag) face_tags_.push_back(tag);
@@ -265,6 +269,8 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
   // one triangle twice, once each way: a zero-volume fold. Both copies are dropped.
   std::vector<std::array<int32_t, 3>> kept;
   std::vector<int> kept_tags;
+  std::vector<int64_t> kept_quads;
+  int32_t face_quads = 0;
   std::vector<std::pair<std::array<int32_t, 3>, size_t>> by_corners;
   int64_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
@@ -279,7 +285,11 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     by_corners.push_back({key, kept.size()});
     kept.push_back({a, b, c});
     kept_tags.push_back(triangle_tags.empty() ? face_tag : triangle_tags[t / 3]);
+    const int32_t q = quad_of.empty() ? -1 : quad_of[t / 3];
+    kept_quads.push_back(q < 0 ? -1 : next_quad_ + q);
+    face_quads = std::max(face_quads, q + 1);
   }
+  next_quad_ += face_quads;
   std::sort(by_corners.begin(), by_corners.end());
   std::vector<char> fold(kept.size(), 0);
   for (size_t k = 0; k + 1 < by_corners.size(); ++k)
@@ -292,6 +302,7 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     tris_.insert(tris_.end(), kept[i].begin(), kept[i].end());
     tri_face_.push_back(face_tag);
     tri_tag_.push_back(kept_tags[i]);
+    tri_quad_.push_back(kept_quads[i]);
   }
   return dropped;
 }
@@ -404,11 +415,92 @@ LambdaStats ModelMesh::lambda_of(const std::vector<double>& xyz, const std::vect
 
 LambdaStats ModelMesh::lambda() const { return lambda_of(xyz_, tris_); }
 
+namespace {
+
+// The quad of two triangles that share an edge, once each way: t1 = (u, v, w) holds u -> v, t2 holds
+// v -> u and s: the quad u, s, v, w, in the triangles' turning sense. False when they share no edge so.
+bool quad_of_pair(const int32_t* t1, const int32_t* t2, int32_t* quad) {
+  for (int k = 0; k < 3; ++k) {
+    const int32_t u = t1[k], v = t1[(k + 1) % 3], w = t1[(k + 2) % 3];
+    for (int j = 0; j < 3; ++j)
+      if (t2[j] == v && t2[(j + 1) % 3] == u) {
+        const int32_t q[4] = {u, t2[(j + 2) % 3], v, w};
+        std::copy(q, q + 4, quad);
+        return true;
+      }
+  }
+  return false;
+}
+
+}  // namespace
+
+void ModelMesh::quad_elements(std::vector<int32_t>& elements, std::vector<int>& tags) const {
+  std::unordered_map<int64_t, std::vector<size_t>> halves;
+  for (size_t t = 0; t < tri_quad_.size(); ++t)
+    if (tri_quad_[t] >= 0) halves[tri_quad_[t]].push_back(t);
+  elements.clear(), tags.clear();
+  for (size_t t = 0; t < tri_quad_.size(); ++t) {
+    const int32_t* T = &tris_[3 * t];
+    if (tri_quad_[t] >= 0) {
+      const std::vector<size_t>& h = halves.at(tri_quad_[t]);
+      int32_t quad[4];
+      if (h.size() == 2 && quad_of_pair(&tris_[3 * h[0]], &tris_[3 * h[1]], quad)) {
+        if (t != h[0]) continue;  // written with its first half
+        elements.insert(elements.end(), quad, quad + 4);
+        tags.push_back(tri_tag_[t]);
+        continue;
+      }
+    }
+    elements.insert(elements.end(), {T[0], T[1], T[2], -1});
+    tags.push_back(tri_tag_[t]);
+  }
+}
+
+ModelMesh::QuadStats ModelMesh::quads() const {
+  QuadStats s;
+  if (next_quad_ == 0) return s;
+  std::vector<int32_t> el;
+  std::vector<int> tags;
+  quad_elements(el, tags);
+  auto X = [&](int32_t i) { return &xyz_[3 * static_cast<size_t>(i)]; };
+  auto area = [&](int32_t a, int32_t b, int32_t c) {
+    const double* p = X(a);
+    const double u[3] = {X(b)[0] - p[0], X(b)[1] - p[1], X(b)[2] - p[2]}, v[3] = {X(c)[0] - p[0], X(c)[1] - p[1], X(c)[2] - p[2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  };
+  double quad_area = 0, all = 0, sum = 0;
+  s.scaled_jacobian_min = 1;
+  for (size_t e = 0; e < el.size(); e += 4) {
+    const int32_t* q = &el[e];
+    if (q[3] < 0) {
+      all += area(q[0], q[1], q[2]);
+      continue;
+    }
+    const double a = area(q[0], q[1], q[2]) + area(q[0], q[2], q[3]);
+    quad_area += a, all += a;
+    const double sj = wefm_common::scaled_jacobian(X(q[0]), X(q[1]), X(q[2]), X(q[3]));
+    s.scaled_jacobian_min = std::min(s.scaled_jacobian_min, sj);
+    sum += sj;
+    ++s.quads;
+  }
+  if (s.quads) s.scaled_jacobian_mean = sum / static_cast<double>(s.quads);
+  else s.scaled_jacobian_min = 0;
+  s.area_fraction = all > 0 ? quad_area / all : 0;
+  return s;
+}
+
 MeshDescription ModelMesh::description() const {
   MeshDescription d;
   d.xyz = xyz_;
   d.elements = tris_;
   d.element_group = tri_tag_;  // a merged face's triangles go back to the B-rep faces under them
+  if (next_quad_ > 0) {
+    quad_elements(elements_, element_tags_);
+    d.elements = elements_;
+    d.element_group = element_tags_;
+    d.nodes_per_element = 4;
+  }
   d.point_group = node_face_;
   for (int f : face_tags_) d.groups.push_back({f, "face_" + std::to_string(f)});
   d.obj_groups = true;

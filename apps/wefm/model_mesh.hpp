@@ -76,8 +76,11 @@ class ModelMesh {
   // three nodes (near the end of a seam). `triangle_tags` (one per triangle, or empty for face_tag)
   // are the faces the output puts them in: a face meshed for several B-rep faces (virtual_faces)
   // is welded and checked as one face, written as its B-rep faces.
+  // `quad_of` (one per triangle, or empty): triangles with the same number >= 0 are the two halves
+  // of one quad of the face mesh (quad-dominant meshes); the file gets the quad where both halves
+  // are still there after welding, a triangle where one is left.
   int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
-                   const std::vector<int>& triangle_tags = {});
+                   const std::vector<int>& triangle_tags = {}, const std::vector<int32_t>& quad_of = {});
 
   // Two faces meeting at a sharp kink of their common edge can each close it with the same triangle
   // (three consecutive nodes of the edge for corners), once each way: a fin of no volume, the kink's
@@ -96,6 +99,13 @@ class ModelMesh {
   // Per node of a face mesh: whether it is on the mesh's boundary (an edge only one triangle uses).
   static std::vector<char> boundary_nodes(size_t nodes, const std::vector<int32_t>& triangles);
   LambdaStats lambda() const;
+  // The quads the file gets (see add_face): how many, their share of the 3D area, and their scaled
+  // Jacobian (common/scaled_jacobian); all zero when there are none.
+  struct QuadStats {
+    int64_t quads = 0;
+    double area_fraction = 0, scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
+  };
+  QuadStats quads() const;
   static LambdaStats lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);
 
   // The mesh for a file (mesh_formats.hpp), a view of this object: one group "face_N" per face (MSH
@@ -117,6 +127,13 @@ class ModelMesh {
   std::vector<int32_t> tris_;
   std::vector<int> tri_face_;
   std::vector<int> tri_tag_;            // the face a triangle is written in
+  std::vector<int64_t> tri_quad_;       // per triangle: the quad it is half of (numbered model-wide), or -1
+  int64_t next_quad_ = 0;
+  // The file's elements when there are quads: four nodes each, a triangle's fourth -1 (built by
+  // description() from the triangles and their quads).
+  void quad_elements(std::vector<int32_t>& elements, std::vector<int>& tags) const;
+  mutable std::vector<int32_t> elements_;
+  mutable std::vector<int> element_tags_;
   std::vector<int> face_tags_;          // in order of addition
   PointGrid grid_;                      // welded boundary nodes
   std::unordered_map<uint64_t, int> expected_uses_;  // node pair on a model edge -> face uses

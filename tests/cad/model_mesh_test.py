@@ -61,8 +61,9 @@ def mesh_model(wefm, model, tmp, name, *extra):
     return json.load(open(rep)), msh, p.stderr
 
 
-def read_msh_faces(path):
-    """Per surface entity (face): its triangles as node tags; and the nodes' points by tag."""
+def read_msh_faces(path, types=(2,)):
+    """Per surface entity (face): its elements of the given MSH types (2 triangles, 3 quads) as node
+    tags; and the nodes' points by tag."""
     lines = open(path).read().split("\n")
     points, i = {}, lines.index("$Nodes") + 2
     while lines[i] != "$EndNodes":
@@ -73,8 +74,9 @@ def read_msh_faces(path):
     faces, i = {}, lines.index("$Elements") + 2
     while lines[i] != "$EndElements":
         tag, etype, n = map(int, lines[i].split()[1:4])
-        if etype == 2:
-            faces.setdefault(tag, []).extend(tuple(map(int, s.split()[1:4])) for s in lines[i + 1:i + 1 + n])
+        if etype in types:
+            k = {2: 3, 3: 4}[etype]
+            faces.setdefault(tag, []).extend(tuple(map(int, s.split()[1:1 + k])) for s in lines[i + 1:i + 1 + n])
         i += 1 + n
     return faces, points
 

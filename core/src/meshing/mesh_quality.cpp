@@ -3,25 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "wefm/common/scaled_jacobian.hpp"
+
 namespace wefm::meshing {
 
-double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  const Vec3 p[4] = {a, b, c, d};
-  Vec3 n = Vec3::Zero();
-  Vec3 cr[4];
-  for (int k = 0; k < 4; ++k) {
-    cr[k] = (p[(k + 1) % 4] - p[k]).cross(p[(k + 3) % 4] - p[k]);
-    n += cr[k];
-  }
-  if (!(n.norm() > 0)) return 0;
-  n.normalize();
-  double worst = 1;
-  for (int k = 0; k < 4; ++k) {
-    const double l = (p[(k + 1) % 4] - p[k]).norm() * (p[(k + 3) % 4] - p[k]).norm();
-    worst = std::min(worst, l > 0 ? cr[k].dot(n) / l : 0.0);
-  }
-  return worst;
-}
+double scaled_jacobian(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return wefm_common::scaled_jacobian(a, b, c, d); }
 
 double wiggle(const std::vector<Vec3>& x, const std::vector<Vec3>& nrm) {
   const size_t n = x.size() - 1;
