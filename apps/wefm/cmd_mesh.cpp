@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "owned.hpp"
+#include "wefm/common/element_corners.hpp"
 #include "wefm/common/lo_lambda.hpp"
 #include "command.hpp"
 #include "exit_codes.hpp"
@@ -111,7 +112,7 @@ int write_domain_mesh(const std::string& path, const MeshArrays& m, std::string&
 }
 
 // Corners of the element at e: a quad-dominant mesh's triangle is four nodes, the last -1.
-size_t element_corners(const MeshArrays& m, size_t e) { return m.npe == 4 && m.elements[e + 3] < 0 ? 3 : static_cast<size_t>(m.npe); }
+size_t element_corners(const MeshArrays& m, size_t e) { return wefm_common::element_corners(&m.elements[e], m.npe); }
 
 // Lo's lambda of an element in 3D; a quad by its worse half.
 double element_lambda(const MeshArrays& m, size_t e) {

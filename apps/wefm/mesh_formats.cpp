@@ -7,6 +7,7 @@
 
 #include "exit_codes.hpp"
 #include "text_out.hpp"
+#include "wefm/common/element_corners.hpp"
 #include "wefm/common/obj_lines.hpp"
 
 namespace wefm_cli {
@@ -49,7 +50,7 @@ class Prepared {
   size_t elements() const { return m_.elements.size / npe(); }
   size_t npe() const { return static_cast<size_t>(m_.nodes_per_element); }
   // Corners of element e: a quad-dominant mesh's triangle is four nodes, the last -1.
-  size_t corners(size_t e) const { return npe() == 4 && m_.elements[e * 4 + 3] < 0 ? 3 : npe(); }
+  size_t corners(size_t e) const { return wefm_common::element_corners(m_.elements.data + e * npe(), m_.nodes_per_element); }
   bool has_uv() const { return !m_.uv.empty(); }
   int group_of_element(size_t e) const { return m_.element_group.empty() ? m_.groups[0].tag : m_.element_group[e]; }
   // MSH: the entity a point is listed under.

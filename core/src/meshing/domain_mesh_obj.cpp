@@ -1,5 +1,6 @@
 #include <string>
 
+#include "wefm/common/element_corners.hpp"
 #include "wefm/core/mesh/obj_writer.hpp"
 #include "wefm/core/meshing/domain_mesh.hpp"
 
@@ -14,7 +15,7 @@ void write_obj(const std::string& path, const DomainMesh& m) {
   // A node's UV is its own: the same index for v and vt.
   // A quad-dominant mesh's triangle ends in -1.
   for (std::size_t e = 0; e + npe <= m.elements.size(); e += npe) {
-    const std::size_t corners = npe == 4 && m.elements[e + 3] < 0 ? 3 : npe;
+    const std::size_t corners = wefm_common::element_corners(&m.elements[e], m.nodes_per_element);
     w.face(&m.elements[e], &m.elements[e], corners);
   }
   w.commit();

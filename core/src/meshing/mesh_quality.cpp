@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "wefm/common/element_corners.hpp"
 #include "wefm/common/scaled_jacobian.hpp"
 
 namespace wefm::meshing {
@@ -38,7 +39,7 @@ void measure_quality(DomainMesh& m) {
   auto tri_area = [&](const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); };
   for (size_t e = 0; e < static_cast<size_t>(r.elements); ++e) {
     // A quad-dominant mesh's triangle: four nodes, the last -1.
-    if (npe == 3 || m.elements[e * npe + 3] < 0) {
+    if (wefm_common::element_corners(&m.elements[e * npe], m.nodes_per_element) == 3) {
       lam.push_back(lo_lambda(X(e, 0), X(e, 1), X(e, 2)));
       area += tri_area(X(e, 0), X(e, 1), X(e, 2));
       continue;

@@ -1,12 +1,13 @@
 #include "wefm/core/meshing/recombine.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
-#include <deque>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "wefm/common/element_corners.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
 
 namespace wefm::meshing {
@@ -141,7 +142,7 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
   std::vector<std::vector<size_t>> around(n);
   std::vector<std::vector<Index>> neighbours(n);
   for (size_t e = 0; e < ne; ++e) {
-    const int c = m.elements[4 * e + 3] < 0 ? 3 : 4;
+    const int c = static_cast<int>(wefm_common::element_corners(&m.elements[4 * e], 4));
     for (int k = 0; k < c; ++k) {
       const auto a = static_cast<size_t>(m.elements[4 * e + static_cast<size_t>(k)]);
       around[a].push_back(e);
@@ -229,7 +230,7 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   const Index nb = m.boundary_nodes;
   // Edges used once are on the boundary.
   std::unordered_map<std::uint64_t, int> uses;
-  auto corners = [&](size_t e) { return m.elements[4 * e + 3] < 0 ? 3 : 4; };
+  auto corners = [&](size_t e) { return static_cast<int>(wefm_common::element_corners(&m.elements[4 * e], 4)); };
   for (size_t e = 0; e < ne; ++e)
     for (int k = 0, n = corners(e); k < n; ++k) uses[edge_key(m.elements[4 * e + static_cast<size_t>(k)], m.elements[4 * e + static_cast<size_t>((k + 1) % n)])]++;
   // New nodes, numbered after the old ones for now; `boundary` marks those on the boundary.
