@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <unordered_set>
 
 #include "wefm/core/sys/clock.hpp"
 #include "wefm/core/sys/error.hpp"
 #include "wefm/core/meshing/frontal.hpp"
+#include "wefm/core/meshing/hard_edges.hpp"
 #include "wefm/core/meshing/smoothing.hpp"
 #include "wefm/core/meshing/triangulation.hpp"
 
@@ -74,6 +76,19 @@ void boundary_nodes(const std::vector<LoopNodes>& loops, std::vector<P2>& pts, s
   }
 }
 
+// The segments given both ways (a scar: the boundary runs along both its sides), once each.
+std::vector<std::array<Index, 2>> scar_segments(const std::vector<std::array<Index, 2>>& segs) {
+  std::unordered_set<std::uint64_t> directed;
+  for (const auto& s : segs) directed.insert((static_cast<std::uint64_t>(static_cast<std::uint32_t>(s[0])) << 32) | static_cast<std::uint32_t>(s[1]));
+  std::vector<std::array<Index, 2>> out;
+  for (const auto& s : segs)
+    if (s[0] < s[1] && directed.count((static_cast<std::uint64_t>(static_cast<std::uint32_t>(s[1])) << 32) | static_cast<std::uint32_t>(s[0])))
+      out.push_back(s);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 // Inserts the middles of edges between two boundary nodes that span the face (spans_face), until
 // none is left or `rounds` passes: a face narrower than the size has no interior node of its own
 // there. Before improvement, so that smoothing shapes the elements around the new nodes.
@@ -109,6 +124,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   std::vector<std::array<Index, 2>> segs;
   boundary_nodes(loops, pts, out.xyz, segs);
   out.boundary_nodes = static_cast<Index>(pts.size());
+  out.hard_edges = scar_segments(segs);
   Triangulation tr(pts, segs);
   const SizeField field(loops, o.size, kSizeGradation);
   std::vector<double> node_size(out.xyz.size());
@@ -154,7 +170,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
 
   control.check(0.8);
   t0 = now();
-  improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, o.smoothing_iterations, map, control, span_floor);
+  improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, HardEdges(out.hard_edges), o.smoothing_iterations, map, control, span_floor);
   out.report.time_smooth = now() - t0;
   out.nodes_per_element = 3;
   for (const auto& t : tris) out.elements.insert(out.elements.end(), t.begin(), t.end());

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "wefm/common/element_corners.hpp"
+#include "wefm/core/meshing/hard_edges.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
 
 namespace wefm::meshing {
@@ -18,11 +19,6 @@ namespace {
 // gives up: a path that long would shuffle quads across the face for one more quad, and the search
 // over every leftover triangle must stay near linear in the mesh.
 constexpr size_t kSearchLimit = 400;
-
-std::uint64_t edge_key(Index a, Index b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
 
 double cross2(const P2& o, const P2& a, const P2& b) { return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x(); }
 
@@ -41,8 +37,8 @@ struct Candidate {
   double quality;
 };
 
-// Candidate quads over each edge inside the face, with the triangles' dual graph (per triangle, its
-// candidates by index).
+// Candidate quads over each edge inside the face but the hard ones, with the triangles' dual graph
+// (per triangle, its candidates by index).
 std::vector<Candidate> candidates(const DomainMesh& m, double min_quality, std::vector<std::vector<size_t>>& of_triangle) {
   const size_t nt = m.elements.size() / 3;
   std::unordered_map<std::uint64_t, std::pair<Index, int>> first;  // edge -> triangle, its corner before the edge
@@ -50,6 +46,7 @@ std::vector<Candidate> candidates(const DomainMesh& m, double min_quality, std::
   std::vector<Candidate> out;
   of_triangle.assign(nt, {});
   const Index* T = m.elements.data();
+  const HardEdges hard(m.hard_edges);
   for (size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const Index a = T[3 * t + static_cast<size_t>(k)], b = T[3 * t + static_cast<size_t>((k + 1) % 3)];
@@ -63,7 +60,7 @@ std::vector<Candidate> candidates(const DomainMesh& m, double min_quality, std::
       const Index b1 = T[3 * static_cast<size_t>(t1) + static_cast<size_t>((k1 + 1) % 3)];
       const Index c = T[3 * static_cast<size_t>(t1) + static_cast<size_t>((k1 + 2) % 3)];
       const Index d = T[3 * t + static_cast<size_t>((k + 2) % 3)];
-      if (a1 != b || b1 != a) continue;  // not one orientation: no quad across it
+      if (a1 != b || b1 != a || hard.has(a, b)) continue;  // not one orientation, or an edge to keep: no quad across it
       const std::array<Index, 4> q{a1, d, b1, c};
       if (!convex_in_uv(m.uv, q)) continue;
       const double quality = scaled_jacobian(m.xyz[static_cast<size_t>(q[0])], m.xyz[static_cast<size_t>(q[1])],
@@ -228,7 +225,9 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   const size_t ne = m.elements.size() / 4;
   const size_t n0 = m.uv.size();
   const Index nb = m.boundary_nodes;
-  // Edges used once are on the boundary.
+  // Edges used once are on the boundary; hard edges are halved like them: a lift of the UV middle
+  // would leave the hard edge's 3D curve wherever the UV chord skips a vertex of its chain.
+  const HardEdges hard(m.hard_edges);
   std::unordered_map<std::uint64_t, int> uses;
   auto corners = [&](size_t e) { return static_cast<int>(wefm_common::element_corners(&m.elements[4 * e], 4)); };
   for (size_t e = 0; e < ne; ++e)
@@ -249,9 +248,9 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   auto midpoint = [&](Index a, Index b) {
     const auto [it, fresh] = mid.emplace(edge_key(a, b), 0);
     if (!fresh) return it->second;
-    const bool on_boundary = uses[edge_key(a, b)] == 1;
+    const bool on_boundary = uses[edge_key(a, b)] == 1, on_hard = hard.has(a, b);
     const Vec3 chord = 0.5 * (m.xyz[static_cast<size_t>(a)] + m.xyz[static_cast<size_t>(b)]);
-    it->second = add(0.5 * (m.uv[static_cast<size_t>(a)] + m.uv[static_cast<size_t>(b)]), on_boundary, on_boundary ? &chord : nullptr);
+    it->second = add(0.5 * (m.uv[static_cast<size_t>(a)] + m.uv[static_cast<size_t>(b)]), on_boundary || on_hard, on_boundary || on_hard ? &chord : nullptr);
     return it->second;
   };
   std::vector<Index> out;
@@ -284,6 +283,17 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   }
   for (Index& i : out) i = renum[static_cast<size_t>(i)];
   m.elements = std::move(out);
+  std::vector<std::array<Index, 2>> halves;
+  for (const auto& e : m.hard_edges) {
+    const auto it = mid.find(edge_key(e[0], e[1]));
+    if (it == mid.end()) continue;  // not an edge of the mesh: nothing to keep
+    const Index middle = renum[static_cast<size_t>(it->second)];
+    for (const Index end : e) {
+      const Index r = renum[static_cast<size_t>(end)];
+      halves.push_back({std::min(r, middle), std::max(r, middle)});
+    }
+  }
+  m.hard_edges = std::move(halves);
   m.boundary_nodes = boundary_count;
 }
 

@@ -75,8 +75,8 @@ bool makes_fold(const NodeTriangles& around, const std::vector<Tri3>& tris, cons
   return same_point(b, c) || apex_is(a, b, d) || apex_is(b, d, a) || apex_is(d, c, a) || apex_is(c, a, d);
 }
 
-std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
-                       double span_floor) {
+std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard,
+                       const SurfaceMap& map, double span_floor) {
   // The triangles around each node, as they were when the pass started (counting sort): the
   // neighbour across an edge is the other triangle around one of its ends that holds the edge
   // reversed. Flipped triangles are marked and left alone for the rest of the pass, so the stale
@@ -105,7 +105,7 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
       int j = -1;
       const Index s = across(around, tris, b, b, c, &j);
       // Each edge once, from its later triangle; an edge whose neighbour was flipped waits.
-      if (s < 0 || s > t || touched[static_cast<size_t>(s)]) continue;
+      if (s < 0 || s > t || touched[static_cast<size_t>(s)] || hard.has(b, c)) continue;
       const Tri3 S = tris[static_cast<size_t>(s)];
       const Index d = S[static_cast<size_t>(j)];
       const double old_q = std::min(known_quality(t, i), known_quality(s, 0));
@@ -269,7 +269,7 @@ std::int64_t smooth_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std:
 // other triangles hold it there: no move of the existing nodes mends either.
 // One function of about 100 lines: the split, its moves and its undo share the pass's bookkeeping
 // (the triangles added per node, those touched, the stars), which steps of their own would pass round.
-std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map) {
+std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard, const SurfaceMap& map) {
   std::vector<Index> bad;
   for (Index t = 0; t < static_cast<Index>(tris.size()); ++t) {
     const Tri3& T = tris[static_cast<size_t>(t)];
@@ -293,7 +293,7 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
     for (int i = 0; i < 3; ++i) {
       const Index ai = T[static_cast<size_t>(i)], bi = T[static_cast<size_t>((i + 1) % 3)], ci = T[static_cast<size_t>((i + 2) % 3)];
       const double len = (xyz[static_cast<size_t>(bi)] - xyz[static_cast<size_t>(ci)]).norm();
-      if (len <= longest) continue;
+      if (len <= longest || hard.has(bi, ci)) continue;
       int m = -1;
       const Index u = across(around, tris, bi, bi, ci, &m);
       if (u < 0 || touched[static_cast<size_t>(u)]) continue;
@@ -376,8 +376,8 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
 // lifted, the new node then moved for the worst quality of its four triangles. The mesher splits
 // them before improvement and flips never make one; this mends what the moves left. Returns the
 // number of edges split; an edge whose triangle another split changed waits for the next call.
-std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const SurfaceMap& map,
-                            double span_floor) {
+std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard,
+                            const SurfaceMap& map, double span_floor) {
   const NodeTriangles around = node_triangles(uv.size(), tris);
   std::vector<char> touched(tris.size(), 0);
   NodeStar star(uv, xyz, tris);
@@ -387,7 +387,7 @@ std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::ve
     for (int i = 0; i < 3 && !touched[static_cast<size_t>(t)]; ++i) {
       const Tri3 T = tris[static_cast<size_t>(t)];
       const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)], c = T[static_cast<size_t>((i + 2) % 3)];
-      if (a >= fixed || b >= fixed) continue;
+      if (a >= fixed || b >= fixed || hard.has(a, b)) continue;
       int m = -1;
       const Index s = across(around, tris, a, a, b, &m);
       if (s < 0 || touched[static_cast<size_t>(s)]) continue;  // a boundary segment, or changed already
@@ -411,7 +411,8 @@ std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::ve
 
 }  // namespace
 
-std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, int iterations, const SurfaceMap& map,
+std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard, int iterations,
+                           const SurfaceMap& map,
                            const MeshControl& control, double span_floor) {
   // Each pass over a face of millions of triangles takes a while: the caller's stop is heard
   // between passes, and the fraction reported climbs from 0.8 towards 0.95 pass by pass.
@@ -427,7 +428,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
   auto flips = [&] {
     for (int k = 0; k < 8; ++k) {
       check();
-      if (flip_pass(uv, xyz, tris, fixed, map, span_floor) < few_flips) break;
+      if (flip_pass(uv, xyz, tris, fixed, hard, map, span_floor) < few_flips) break;
     }
   };
   std::int64_t total = 0;
@@ -447,12 +448,12 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
   }
   for (int it = 0; it < kSplitRounds; ++it) {
     check();
-    if (split_pass(uv, xyz, tris, fixed, map) == 0) break;
+    if (split_pass(uv, xyz, tris, fixed, hard, map) == 0) break;
     flips();
   }
   for (int it = 0; it < kSplitRounds; ++it) {
     check();
-    if (split_spanning(uv, xyz, tris, fixed, map, span_floor) == 0) break;
+    if (split_spanning(uv, xyz, tris, fixed, hard, map, span_floor) == 0) break;
   }
   return total;
 }

@@ -1,5 +1,6 @@
 #pragma once
 // A mesh of the solved domain and its image in 3D (METHOD §9): the entry point of meshing.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct DomainMesh {
   std::vector<std::vector<Index>> rails;
   Index grid_columns = 0;  // transfinite: n + 1
   Index boundary_nodes = 0;                // nodes 0..boundary_nodes-1 lie on the loops
+  // Free meshes: edges inside the face that stay edges of the mesh (hard_edges.hpp), each once, both
+  // ends boundary nodes: the segments of every scar.
+  std::vector<std::array<Index, 2>> hard_edges;
   MeshReport report;
 };
 

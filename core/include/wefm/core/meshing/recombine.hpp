@@ -10,7 +10,7 @@
 namespace wefm::meshing {
 
 // Turns the triangles of `m` (nodes_per_element 3) into quads where two triangles sharing an edge
-// inside the face make a quad convex in UV with a 3D scaled Jacobian of at least `min_quality`.
+// inside the face (not a hard edge) make a quad convex in UV with a 3D scaled Jacobian of at least `min_quality`.
 // Afterwards nodes_per_element is 4 and a triangle left over has -1 as its fourth node. The nodes
 // are not moved (smooth_quads does that, inside the face only).
 void recombine(DomainMesh& m, double min_quality);
@@ -25,7 +25,8 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes);
 // a quad into four, a triangle into three, at the midpoints of its edges and its centre. Inside
 // the face a new node is the lift of its UV; on the boundary, the midpoint of the 3D chord, so two
 // faces given the same nodes on an edge still share them. Nodes 0..boundary_nodes-1 stay the
-// boundary's, now with its midpoints.
+// boundary's, now with its midpoints and the hard edges' (3D chord midpoints too, fixed like the
+// boundary's); each hard edge becomes its two halves.
 void split_into_quads(DomainMesh& m, const SurfaceMap& map);
 
 }  // namespace wefm::meshing

@@ -8,6 +8,7 @@
 #include <array>
 #include <vector>
 
+#include "wefm/core/meshing/hard_edges.hpp"
 #include "wefm/core/meshing/mesh_control.hpp"
 #include "wefm/core/meshing/surface_map.hpp"
 
@@ -27,11 +28,12 @@ constexpr double kSpanSag = 0.25;
 bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, double shortest,
                 Vec3* middle = nullptr);
 
-// Nodes below `fixed` (the boundary nodes) never move. Returns the number of accepted moves.
+// Nodes below `fixed` (the boundary nodes) never move, and the `hard` edges between them are never
+// flipped or split. Returns the number of accepted moves.
 // `control` is checked before every pass (fractions 0.8 to 0.95): a stop throws Error(cancelled).
 // Flips never make an edge that spans the face (spans_face, edges from `span_floor` long), and the
 // last pass splits those the moves left.
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<std::array<Index, 3>>& tris, Index fixed,
-                           int iterations, const SurfaceMap& map, const MeshControl& control, double span_floor);
+                           const HardEdges& hard, int iterations, const SurfaceMap& map, const MeshControl& control, double span_floor);
 
 }  // namespace wefm::meshing
