@@ -102,3 +102,34 @@ TEST_CASE("the wiggle factor sees waviness in the surface and ignores bending wi
   CHECK(meshing::wiggle(x, n) == doctest::Approx(0.04 * 7 / 8 / std::pow((8 * std::sqrt(1.01)) / 8, 2)).epsilon(1e-9));
   CHECK(meshing::wiggle(bent, n) == doctest::Approx(0.0));
 }
+
+TEST_CASE("all-quad transfinite halves the grid both ways: the old nodes kept, the rim's new ones at the chords' middles") {
+  const auto f = test::solved(test::saddle(24), 1.0);
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Transfinite;
+  o.size = 0.25;
+  const auto coarse = f.mesh_domain(o);
+  o.elements = meshing::Elements::Quads;
+  const auto fine = f.mesh_domain(o);
+  REQUIRE(fine.nodes_per_element == 4);
+  const size_t c0 = static_cast<size_t>(coarse.grid_columns), r0 = coarse.xyz.size() / c0;
+  const size_t c1 = static_cast<size_t>(fine.grid_columns), r1 = fine.xyz.size() / c1;
+  CHECK(c1 == 2 * c0 - 1);
+  CHECK(r1 == 2 * r0 - 1);
+  CHECK(fine.report.elements == 4 * coarse.report.elements);
+  CHECK(fine.report.quads == fine.report.elements);
+  for (size_t j = 0; j < r0; ++j)
+    for (size_t i = 0; i < c0; ++i) CHECK((fine.xyz[2 * j * c1 + 2 * i] - coarse.xyz[j * c0 + i]).norm() <= 1e-12);
+  // Along the bottom and left sides: each new node is the middle of its two old neighbours' chord.
+  for (size_t i = 0; i + 1 < c0; ++i) CHECK(fine.xyz[2 * i + 1] == 0.5 * (coarse.xyz[i] + coarse.xyz[i + 1]));
+  for (size_t j = 0; j + 1 < r0; ++j) CHECK(fine.xyz[(2 * j + 1) * c1] == 0.5 * (coarse.xyz[j * c0] + coarse.xyz[(j + 1) * c0]));
+  // Inside, the new nodes lie on the surface; the rails are the fine grid's and measured.
+  meshing::DomainMesh inside = fine;
+  inside.xyz.clear();
+  for (size_t j = 1; j + 1 < r1; ++j)
+    for (size_t i = 1; i + 1 < c1; ++i) inside.xyz.push_back(fine.xyz[j * c1 + i]);
+  CHECK(test::max_off_surface(f.mesh(), inside) <= 1e-9);
+  CHECK(fine.rails.size() == (r1 - 2) + (c1 - 2));
+  CHECK(fine.report.wiggle_max < coarse.report.wiggle_max + 0.01);
+  CHECK(fine.report.scaled_jacobian_min > 0.5);
+}

@@ -762,7 +762,9 @@ typedef struct wefm_mesh_options {
   double corner_angle_deg;   /**< loop vertices turning more than this are kept as nodes. Default 30 */
   double min_angle_deg;      /**< angle bound in UV of the circumcentre refinement after the front. Default 28 */
   int64_t max_elements;      /**< refuse to exceed this many elements (0 = no cap). Default 0 */
-  int elements;              /**< wefm_elements, free meshes only (transfinite meshes follow `quads`).
+  int elements;              /**< wefm_elements of a free mesh. Transfinite meshes follow `quads`; with
+                                  quads and WEFM_ELEMENTS_QUADS their grid is halved both ways, the new
+                                  boundary nodes at the 3D chords' midpoints as in a free all-quad mesh.
                                   Default WEFM_ELEMENTS_TRIANGLES */
 } wefm_mesh_options;
 

@@ -41,7 +41,7 @@ namespace {
 
 // Before the grid is allocated: a size far below the face's would otherwise exhaust memory.
 void check_elements(Index n, Index m, const MeshOptions& o) {
-  const std::int64_t elements = static_cast<std::int64_t>(n) * m * (o.quads ? 1 : 2);
+  const std::int64_t elements = static_cast<std::int64_t>(n) * m * (!o.quads ? 2 : o.elements == Elements::Quads ? 4 : 1);
   if (o.max_elements > 0 && elements > o.max_elements)
     fail(Errc::invalid_argument, "the transfinite mesh would have " + std::to_string(elements) + " elements, above max_elements = " + std::to_string(o.max_elements));
 }
@@ -102,6 +102,72 @@ std::array<LoopNodes, 4> uniform_sides(const TriMesh& mesh, const Topology& topo
   return side;
 }
 
+// The grid's normals, elements and rails from its nodes (grid numbering j * (n + 1) + i).
+void emit_grid(Index n, Index m, bool quads, DomainMesh& out) {
+  auto id = [&](Index i, Index j) { return j * (n + 1) + i; };
+  // The grid's own normal (cross product of its two rail directions) for the wiggle factor: exact
+  // where the grid is, unlike vertex normals near a facetted boundary.
+  auto X = [&](Index i, Index j) { return out.xyz[static_cast<size_t>(id(std::clamp<Index>(i, 0, n), std::clamp<Index>(j, 0, m)))]; };
+  for (Index j = 0; j <= m; ++j)
+    for (Index i = 0; i <= n; ++i) {
+      const Vec3 g = (X(i + 1, j) - X(i - 1, j)).cross(X(i, j + 1) - X(i, j - 1));
+      if (g.norm() > 0) out.normal[static_cast<size_t>(id(i, j))] = g.normalized();
+    }
+  out.grid_columns = n + 1;
+  out.boundary_nodes = 0;  // grid numbering: boundary nodes are the grid's rim, not a prefix
+  out.nodes_per_element = quads ? 4 : 3;
+  for (Index j = 0; j < m; ++j)
+    for (Index i = 0; i < n; ++i) {
+      const Index a = id(i, j), b = id(i + 1, j), cc = id(i + 1, j + 1), d = id(i, j + 1);
+      if (quads) {
+        out.elements.insert(out.elements.end(), {a, b, cc, d});
+      } else if ((out.xyz[static_cast<size_t>(a)] - out.xyz[static_cast<size_t>(cc)]).norm() <=
+                 (out.xyz[static_cast<size_t>(b)] - out.xyz[static_cast<size_t>(d)]).norm()) {
+        out.elements.insert(out.elements.end(), {a, b, cc, a, cc, d});
+      } else {
+        out.elements.insert(out.elements.end(), {a, b, d, b, cc, d});
+      }
+    }
+  // Interior rail lines only: the boundary ones are the boundary discretisation, the same 3D
+  // points whatever the domain, so they would only blur the comparison of domains.
+  for (Index j = 1; j < m; ++j) {
+    std::vector<Index> row;
+    for (Index i = 0; i <= n; ++i) row.push_back(id(i, j));
+    out.rails.push_back(std::move(row));
+  }
+  for (Index i = 1; i < n; ++i) {
+    std::vector<Index> col;
+    for (Index j = 0; j <= m; ++j) col.push_back(id(i, j));
+    out.rails.push_back(std::move(col));
+  }
+}
+
+// Halves the grid's cells both ways (all-quad transfinite meshes, as split_into_quads halves a free
+// mesh's): the new nodes take the UV middle of their neighbours; on the rim, the 3D chord's middle
+// (kept, like the given nodes), so a face beside it given the same edge nodes makes the same ones.
+// Inside, the caller lifts them.
+void halve_grid(Index& n, Index& m, std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<char>& on_side) {
+  const Index n2 = 2 * n, m2 = 2 * m;
+  auto old_id = [&](Index i, Index j) { return static_cast<size_t>(j * (n + 1) + i); };
+  auto new_id = [&](Index i, Index j) { return static_cast<size_t>(j * (n2 + 1) + i); };
+  std::vector<P2> uv2(static_cast<size_t>((n2 + 1) * (m2 + 1)), P2::Zero());
+  std::vector<Vec3> xyz2(uv2.size(), Vec3::Zero());
+  std::vector<char> side2(uv2.size(), 0);
+  for (Index j = 0; j <= m2; ++j)
+    for (Index i = 0; i <= n2; ++i) {
+      // The old nodes around (i, j): one, the two ends of an old edge, or an old cell's four corners.
+      const Index i0 = i / 2, i1 = (i + 1) / 2, j0 = j / 2, j1 = (j + 1) / 2;
+      const size_t k = new_id(i, j);
+      uv2[k] = 0.25 * (uv[old_id(i0, j0)] + uv[old_id(i1, j0)] + uv[old_id(i0, j1)] + uv[old_id(i1, j1)]);
+      xyz2[k] = 0.25 * (xyz[old_id(i0, j0)] + xyz[old_id(i1, j0)] + xyz[old_id(i0, j1)] + xyz[old_id(i1, j1)]);
+      side2[k] = i == 0 || j == 0 || i == n2 || j == m2;
+      if (i % 2 == 0 && j % 2 == 0) uv2[k] = uv[old_id(i0, j0)], xyz2[k] = xyz[old_id(i0, j0)];
+      else if (side2[k]) xyz2[k] = 0.5 * (xyz[old_id(i0, j0)] + xyz[old_id(i1, j1)]);
+    }
+  n = n2, m = m2;
+  uv = std::move(uv2), xyz = std::move(xyz2), on_side = std::move(side2);
+}
+
 }  // namespace
 
 void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
@@ -144,6 +210,8 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
       else if (i == 0) out.uv[k] = L.uv[jj], out.xyz[k] = L.xyz[jj], on_side[k] = 1;
       else if (i == n) out.uv[k] = R.uv[jj], out.xyz[k] = R.xyz[jj], on_side[k] = 1;
     }
+  Index n_out = n, m_out = m;
+  if (o.quads && o.elements == Elements::Quads) halve_grid(n_out, m_out, out.uv, out.xyz, on_side);
   out.report.time_mesh = now() - t0;
   const double t1 = now();
   out.normal.resize(out.uv.size());
@@ -153,41 +221,7 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
     if (!on_side[k]) out.xyz[k] = x;
   }
   out.report.time_map = now() - t1;
-  // The grid's own normal (cross product of its two rail directions) for the wiggle factor: exact
-  // where the grid is, unlike vertex normals near a facetted boundary.
-  auto X = [&](Index i, Index j) { return out.xyz[static_cast<size_t>(id(std::clamp<Index>(i, 0, n), std::clamp<Index>(j, 0, m)))]; };
-  for (Index j = 0; j <= m; ++j)
-    for (Index i = 0; i <= n; ++i) {
-      const Vec3 g = (X(i + 1, j) - X(i - 1, j)).cross(X(i, j + 1) - X(i, j - 1));
-      if (g.norm() > 0) out.normal[static_cast<size_t>(id(i, j))] = g.normalized();
-    }
-  out.grid_columns = n + 1;
-  out.boundary_nodes = 0;  // grid numbering: boundary nodes are the grid's rim, not a prefix
-  out.nodes_per_element = o.quads ? 4 : 3;
-  for (Index j = 0; j < m; ++j)
-    for (Index i = 0; i < n; ++i) {
-      const Index a = id(i, j), b = id(i + 1, j), cc = id(i + 1, j + 1), d = id(i, j + 1);
-      if (o.quads) {
-        out.elements.insert(out.elements.end(), {a, b, cc, d});
-      } else if ((out.xyz[static_cast<size_t>(a)] - out.xyz[static_cast<size_t>(cc)]).norm() <=
-                 (out.xyz[static_cast<size_t>(b)] - out.xyz[static_cast<size_t>(d)]).norm()) {
-        out.elements.insert(out.elements.end(), {a, b, cc, a, cc, d});
-      } else {
-        out.elements.insert(out.elements.end(), {a, b, d, b, cc, d});
-      }
-    }
-  // Interior rail lines only: the boundary ones are the boundary discretisation, the same 3D
-  // points whatever the domain, so they would only blur the comparison of domains.
-  for (Index j = 1; j < m; ++j) {
-    std::vector<Index> row;
-    for (Index i = 0; i <= n; ++i) row.push_back(id(i, j));
-    out.rails.push_back(std::move(row));
-  }
-  for (Index i = 1; i < n; ++i) {
-    std::vector<Index> col;
-    for (Index j = 0; j <= m; ++j) col.push_back(id(i, j));
-    out.rails.push_back(std::move(col));
-  }
+  emit_grid(n_out, m_out, o.quads, out);
 }
 
 }  // namespace wefm::meshing
