@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -131,6 +132,40 @@ double element_quality(const DomainMesh& m, size_t e) {
   return scaled_jacobian(X(0), X(1), X(2), X(3));
 }
 
+// The worst quality over elements `es`.
+double worst_of(const DomainMesh& m, const std::vector<size_t>& es) {
+  double w = 2;
+  for (size_t e : es) w = std::min(w, element_quality(m, e));
+  return w;
+}
+
+// Compass search on the worst element around node i (8 directions, the step halved 6 times from
+// `step`): where a Laplacian move cannot lift a poor element (a quad split from a sliver, or folded
+// next to a chord's midpoint) a move towards no particular point often can. Keeps the best position
+// at which no quad that had a scaled Jacobian of `floor` falls below it (a triangle lifted at a
+// quad's expense would break the quads' bar).
+void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step, double floor) {
+  double best = worst_of(m, around);
+  std::vector<size_t> held;  // the quads at or above the floor
+  for (size_t e : around)
+    if (m.elements[4 * e + 3] >= 0 && element_quality(m, e) >= floor) held.push_back(e);
+  P2 best_uv = m.uv[i];
+  Vec3 best_xyz = m.xyz[i], best_normal = m.normal[i];
+  for (int level = 0; level < 6; ++level, step *= 0.5)
+    for (int dir = 0; dir < 8; ++dir) {
+      m.uv[i] = best_uv + step * P2(std::cos(dir * 0.25 * kPi), std::sin(dir * 0.25 * kPi));
+      Vec3 x, nrm;
+      if (!map.lift(m.uv[i], x, &nrm)) continue;
+      m.xyz[i] = x, m.normal[i] = nrm;
+      const double w = worst_of(m, around);
+      if (w > best + 1e-12 && !(worst_of(m, held) < floor)) best = w, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
+    }
+  m.uv[i] = best_uv, m.xyz[i] = best_xyz, m.normal[i] = best_normal;
+}
+
+// Nodes whose worst element stays below this after the Laplacian move get a compass search.
+constexpr double kSearchBelow = 0.3;
+
 }  // namespace
 
 void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
@@ -183,6 +218,11 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
         }
       }
       if (!kept) m.uv[i] = uv0, m.xyz[i] = xyz0, m.normal[i] = normal0;
+      if (worst_of(m, around[i]) < kSearchBelow) {
+        double reach = 0;
+        for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
+        compass_search(m, map, i, around[i], 0.25 * reach / static_cast<double>(neighbours[i].size()), kSearchBelow);
+      }
     }
   }
 }
