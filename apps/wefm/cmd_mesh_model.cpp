@@ -77,8 +77,10 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, a seam and two ends with as "
                                  "many segments, is meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
-      {"elements", 0, "tri|quad-dominant", "free faces: triangles, or quads where pairs of triangles make good ones "
-                                          "(scaled Jacobian >= 0.3; mapped faces then keep their quads too)", "tri", false},
+      {"elements", 0, "tri|quad-dominant|quad", "free faces: triangles, or quads where pairs of triangles make good ones "
+                                               "(scaled Jacobian >= 0.3; mapped faces then keep their quads too), or all quads: "
+                                               "every element of those split into quads at its edges' middles and centre, "
+                                               "sides about H / 2 (as Gmsh's subdivision)", "tri", false},
       {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "
                                "and cap each face's refinement at N; 0 = no limit", std::to_string(kDefaultMaxElements), false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
@@ -230,9 +232,10 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
       fetch(elements, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_elements(dm_raw, b, c, n); }) != WEFM_OK)
     return fail(kExitSolver, std::string("mesh: reading the result: ") + wefm_face_last_error(raw));
   if (r.report.nodes_per_element == 4) {
-    // Quads (transfinite, quad-dominant): split along the shorter diagonal, so the model mesh is
-    // welded and checked as triangles; with quads asked for, the halves are numbered (quad_of) and the
-    // file gets the quads back. A quad-dominant mesh's triangle ends in -1.
+    // Quads (transfinite, quad-dominant, all quads): split along the shorter diagonal, so the model
+    // mesh is welded and checked as triangles; with quads asked for, the halves are numbered (quad_of),
+    // split again where welding asks for it (ModelMesh::add_face), and the file gets the quads back.
+    // A quad-dominant mesh's triangle ends in -1.
     const bool keep = mesh_options.elements != WEFM_ELEMENTS_TRIANGLES;
     r.tris.clear(), r.quad_of.clear();
     for (size_t q = 0; q + 3 < elements.size(); q += 4) {
@@ -361,9 +364,24 @@ PointGrid boundary_grid(const FaceMeshRun& r, double tol) {
   return grid;
 }
 
-// Interior chain vertices of the face's edges where its mesh has a boundary node the edge's given
-// nodes do not have, by edge id.
-void nodes_put_on_edges(const FaceMeshRun& r, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
+// The nodes an edge's segments end in, in the faces' meshes: its given nodes, and with all quads
+// (`halved`) also each segment's middle, which the library puts at the middle of the 3D chord in
+// every face using the edge (WEFM_ELEMENTS_QUADS), and mapped faces too.
+std::vector<double> segment_nodes(const std::vector<double>& given, bool halved) {
+  if (!halved || given.size() < 6) return given;
+  std::vector<double> out;
+  out.reserve(2 * given.size());
+  for (size_t k = 0; k + 2 < given.size(); k += 3) {
+    if (k > 0)
+      for (size_t c = 0; c < 3; ++c) out.push_back(0.5 * (given[k - 3 + c] + given[k + c]));
+    out.insert(out.end(), &given[k], &given[k] + 3);
+  }
+  return out;
+}
+
+// Interior chain vertices of the face's edges where its mesh has a boundary node the edge's nodes
+// (segment_nodes) do not have, by edge id.
+void nodes_put_on_edges(const FaceMeshRun& r, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol, bool halved,
                         std::map<long long, std::vector<EdgeNode>>& out) {
   if (r.tris.empty()) return;
   const PointGrid grid = boundary_grid(r, tol);
@@ -371,7 +389,7 @@ void nodes_put_on_edges(const FaceMeshRun& r, const std::map<long long, wefm_cad
   for (const wefm_cad::CadEdge& e : f.edges) {
     const auto it = edge_nodes.find(e.id);
     if (it == edge_nodes.end()) continue;
-    const std::vector<double>& given = it->second.xyz;
+    const std::vector<double> given = segment_nodes(it->second.xyz, halved);
     double s = 0;
     for (size_t k = 1; k + 1 < e.vertices.size(); ++k) {
       const double* p = &f.xyz[3 * static_cast<size_t>(e.vertices[k])];
@@ -495,10 +513,10 @@ void coincident_nodes(const wefm_cad::CadModel& model, const std::vector<size_t>
 // (those on such an edge whose mesh lacks one of its nodes), reset for meshing.
 std::vector<size_t> adopt_edge_nodes(const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
                                      std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
-                                     const std::vector<size_t>& source) {
+                                     const std::vector<size_t>& source, bool halved) {
   std::map<long long, std::vector<EdgeNode>> added;
   std::map<long long, std::vector<double>> replaced;
-  for (const FaceMeshRun& r : runs) nodes_put_on_edges(r, edge_nodes, tol, added);
+  for (const FaceMeshRun& r : runs) nodes_put_on_edges(r, edge_nodes, tol, halved, added);
   coincident_nodes(model, source, edge_nodes, tol, added, replaced);
   if (added.empty() && replaced.empty()) return {};
   std::set<long long> changed;
@@ -527,7 +545,8 @@ std::vector<size_t> adopt_edge_nodes(const wefm_cad::CadModel& model, std::vecto
 // turned over when they face opposite ways, instead of a mesh of its own flattening, which would
 // differ. Gives face j the mesh of face i when every node on j's edges is a boundary node of i's mesh and
 // every boundary node of i's mesh lies on j's edge chains; false (j to be meshed itself) otherwise.
-bool copy_coincident(FaceMeshRun& j, const FaceMeshRun& i, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol) {
+bool copy_coincident(FaceMeshRun& j, const FaceMeshRun& i, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, double tol,
+                     bool halved) {
   if (i.tris.empty() || i.status == "failed") return false;
   const PointGrid grid = boundary_grid(i, tol);
   PointGrid chain(tol);
@@ -540,10 +559,11 @@ bool copy_coincident(FaceMeshRun& j, const FaceMeshRun& i, const std::map<long l
     }
     const auto it = edge_nodes.find(e.id);
     if (it == edge_nodes.end()) continue;
-    for (size_t k = 0; k + 2 < it->second.xyz.size(); k += 3) {
-      if (grid.find(&it->second.xyz[k], i.xyz) < 0) return false;
-      chain.add(&it->second.xyz[k], static_cast<int32_t>(chain_xyz.size() / 3));
-      chain_xyz.insert(chain_xyz.end(), &it->second.xyz[k], &it->second.xyz[k] + 3);
+    const std::vector<double> nodes = segment_nodes(it->second.xyz, halved);
+    for (size_t k = 0; k + 2 < nodes.size(); k += 3) {
+      if (grid.find(&nodes[k], i.xyz) < 0) return false;
+      chain.add(&nodes[k], static_cast<int32_t>(chain_xyz.size() / 3));
+      chain_xyz.insert(chain_xyz.end(), &nodes[k], &nodes[k] + 3);
     }
   }
   const std::vector<char> boundary = ModelMesh::boundary_nodes(i.xyz.size() / 3, i.tris);
@@ -611,11 +631,8 @@ int parse_request(const std::vector<std::string>& argv, MeshModelRequest& q) {
     return usage("--smoothing: expected a count >= 0");
   if (args.has("elements")) {
     const std::string& e = args.value("elements");
-    // All quads split the edges' segments, which the model's edge nodes and the conformity check
-    // do not follow yet.
-    if (e == "quad") return usage("--elements quad: not for whole models yet (wefm mesh takes it; quad-dominant here)");
-    if (e != "tri" && e != "quad-dominant") return usage("--elements: expected tri or quad-dominant, got '" + e + "'");
-    q.elements = e == "tri" ? WEFM_ELEMENTS_TRIANGLES : WEFM_ELEMENTS_QUAD_DOMINANT;
+    if (e != "tri" && e != "quad-dominant" && e != "quad") return usage("--elements: expected tri, quad-dominant or quad, got '" + e + "'");
+    q.elements = e == "tri" ? WEFM_ELEMENTS_TRIANGLES : e == "quad" ? WEFM_ELEMENTS_QUADS : WEFM_ELEMENTS_QUAD_DOMINANT;
   }
   for (auto [name, field] : {std::pair<const char*, double*>{"deflection", &q.tess.relative_deflection},
                              std::pair<const char*, double*>{"angular-deflection", &q.tess.angular_deflection}})
@@ -672,12 +689,14 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
   if (q.merge_faces) plan.virtual_faces = merge_narrow_faces(model, size, plan.face_sizes);
   // Before any edge is discretised: a size far below the model's (a typo, a unit mix-up) would
   // otherwise grow until memory runs out.
-  const double estimate = estimated_triangles(model, plan.face_sizes);
-  const double estimate_mb = estimate * kBytesPerTriangle / 1e6;
+  // All quads: about two quads per triangle at H (a triangle makes three, two paired ones four), each
+  // held as two triangles until written.
+  const double estimate = estimated_triangles(model, plan.face_sizes) * (q.elements == WEFM_ELEMENTS_QUADS ? 2 : 1);
+  const double estimate_mb = estimate * kBytesPerTriangle * (q.elements == WEFM_ELEMENTS_QUADS ? 2 : 1) / 1e6;
   const double memory_limit = q.settings.options.memory_limit_mb;
   if ((q.max_elements > 0 && estimate > static_cast<double>(q.max_elements)) || (memory_limit > 0 && estimate_mb > memory_limit)) {
     std::fprintf(stderr,
-                 "wefm: %s at size %g would need about %.3g triangles (about %.0f MB), above --max-elements %lld or "
+                 "wefm: %s at size %g would need about %.3g elements (about %.0f MB), above --max-elements %lld or "
                  "--memory-limit %g MB: refused before meshing (a larger --size, or raise the limits)\n",
                  q.model_path.c_str(), size, estimate, estimate_mb, q.max_elements, memory_limit);
     return kExitSolver;
@@ -702,6 +721,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
   tf_options = free_options;
   tf_options.type = WEFM_MESH_TRANSFINITE;
   tf_options.quads = 1;
+  const bool halved = q.elements == WEFM_ELEMENTS_QUADS;  // every face's segments halved (segment_nodes)
   CancelWatcher watcher;
   auto mesh_faces = [&](const std::vector<size_t>& todo) {
     auto work = [&](size_t k) {
@@ -730,7 +750,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
     for (size_t j = 0; j < runs.size(); ++j)
       if (source[j] && (asked.count(j) || asked.count(source[j] - 1))) {
         reset_run(runs[j], runs[j].edge_refinements);
-        if (!copy_coincident(runs[j], runs[source[j] - 1], plan.edge_nodes, weld_tolerance)) alone.push_back(j);
+        if (!copy_coincident(runs[j], runs[source[j] - 1], plan.edge_nodes, weld_tolerance, halved)) alone.push_back(j);
       }
     mesh_faces(alone);
   };
@@ -743,7 +763,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
     mesh_or_copy(todo);
   }
   for (int round = 0; round < kEdgeNodeAdoptions && !interrupted(); ++round) {
-    todo = adopt_edge_nodes(model, runs, plan.edge_nodes, weld_tolerance, source);
+    todo = adopt_edge_nodes(model, runs, plan.edge_nodes, weld_tolerance, source, halved);
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
@@ -751,7 +771,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
 
 // The face meshes welded into one, fins dropped, the model edges declared for the conformity check.
 // Returns the triangles welding collapsed or dropped.
-int64_t assemble(const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs, double size,
+int64_t assemble(const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs, double size, bool halved,
                  ModelMesh& whole) {
   int64_t collapsed = 0;
   for (size_t i = 0; i < runs.size(); ++i)
@@ -767,7 +787,7 @@ int64_t assemble(const wefm_cad::CadModel& model, const ModelPlan& plan, const s
   for (const wefm_cad::CadFace& f : model.faces)
     for (const auto& loop : f.loops)
       for (const wefm_cad::CadEdgeUse& u : loop) ++face_uses[f.edges[static_cast<size_t>(u.edge)].id];
-  for (const auto& [id, en] : plan.edge_nodes) whole.expect_model_edge(en.xyz, face_uses[id]);
+  for (const auto& [id, en] : plan.edge_nodes) whole.expect_model_edge(segment_nodes(en.xyz, halved), face_uses[id]);
   return collapsed;
 }
 
@@ -918,7 +938,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
 
   t0 = Clock::now();
   ModelMesh whole(weld_tolerance);
-  const int64_t collapsed = assemble(model, plan, runs, size, whole);
+  const int64_t collapsed = assemble(model, plan, runs, size, q.elements == WEFM_ELEMENTS_QUADS, whole);
   t.weld = since(t0);
   t0 = Clock::now();
   const ConformityCounts conf = whole.conformity();

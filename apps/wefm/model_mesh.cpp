@@ -248,6 +248,21 @@ std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int3
   return boundary;
 }
 
+void ModelMesh::resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2) const {
+  auto has = [](const std::array<int32_t, 3>& t, int32_t v) { return t[0] == v || t[1] == v || t[2] == v; };
+  int k1 = 0, k2 = 0;
+  while (k1 < 3 && has(t2, t1[static_cast<size_t>(k1)])) ++k1;
+  while (k2 < 3 && has(t1, t2[static_cast<size_t>(k2)])) ++k2;
+  if (k1 == 3 || k2 == 3) return;  // not two halves of one quad
+  // The quad u, s1, w, s2 counter-clockwise: t1 = (u, s1, s2), t2 = (w, s2, s1).
+  const int32_t u = t1[static_cast<size_t>(k1)], s1 = t1[static_cast<size_t>((k1 + 1) % 3)], s2 = t1[static_cast<size_t>((k1 + 2) % 3)];
+  const int32_t w = t2[static_cast<size_t>(k2)];
+  auto lambda = [&](int32_t a, int32_t b, int32_t c) {
+    return wefm_common::lo_lambda(&xyz_[3 * static_cast<size_t>(a)], &xyz_[3 * static_cast<size_t>(b)], &xyz_[3 * static_cast<size_t>(c)]);
+  };
+  if (std::min(lambda(u, s1, w), lambda(u, w, s2)) > std::min(lambda(u, s1, s2), lambda(w, s2, s1))) t1 = {u, s1, w}, t2 = {u, w, s2};
+}
+
 int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
                             const std::vector<int>& triangle_tags, const std::vector<int32_t>& quad_of) {
   face_tags_.push_back(face_tag);
@@ -280,9 +295,6 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
       ++dropped;
       continue;
     }
-    std::array<int32_t, 3> key{a, b, c};
-    std::sort(key.begin(), key.end());
-    by_corners.push_back({key, kept.size()});
     kept.push_back({a, b, c});
     kept_tags.push_back(triangle_tags.empty() ? face_tag : triangle_tags[t / 3]);
     const int32_t q = quad_of.empty() ? -1 : quad_of[t / 3];
@@ -290,6 +302,13 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
     face_quads = std::max(face_quads, q + 1);
   }
   next_quad_ += face_quads;
+  for (size_t i = 0; i + 1 < kept.size(); ++i)
+    if (kept_quads[i] >= 0 && kept_quads[i + 1] == kept_quads[i]) resplit_quad(kept[i], kept[i + 1]), ++i;
+  for (size_t i = 0; i < kept.size(); ++i) {
+    std::array<int32_t, 3> key = kept[i];
+    std::sort(key.begin(), key.end());
+    by_corners.push_back({key, i});
+  }
   std::sort(by_corners.begin(), by_corners.end());
   std::vector<char> fold(kept.size(), 0);
   for (size_t k = 0; k + 1 < by_corners.size(); ++k)

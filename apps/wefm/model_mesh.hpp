@@ -77,8 +77,9 @@ class ModelMesh {
   // are the faces the output puts them in: a face meshed for several B-rep faces (virtual_faces)
   // is welded and checked as one face, written as its B-rep faces.
   // `quad_of` (one per triangle, or empty): triangles with the same number >= 0 are the two halves
-  // of one quad of the face mesh (quad-dominant meshes); the file gets the quad where both halves
-  // are still there after welding, a triangle where one is left.
+  // of one quad of the face mesh (quad-dominant and all-quad meshes), listed one after the other;
+  // they are split again along the quad's better diagonal after welding (resplit_quad). The file gets
+  // the quad where both halves are still there after welding, a triangle where one is left.
   int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
                    const std::vector<int>& triangle_tags = {}, const std::vector<int32_t>& quad_of = {});
 
@@ -117,6 +118,11 @@ class ModelMesh {
 
  private:
   int32_t weld(const double* p, int face_tag);
+  // Two halves of one quad split again along its other diagonal where that makes the worse half
+  // better (Lo lambda, at the welded nodes): a quad with a corner near 180 degrees has a half of no
+  // area across its shorter diagonal, or gets one when welding moves a node by up to the tolerance,
+  // and the check would call that a defect.
+  void resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2) const;
   int32_t find(const double* p) const;  // the welded node at p, or -1
   void note_defect(ConformityCounts& out, uint64_t key, int uses, int expected) const;
 

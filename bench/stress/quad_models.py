@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""Quad-dominant whole models against Gmsh's recombination (issue 32): every model at h = R x the
-bounding-box diagonal, `wefm mesh-model MODEL --size-ratio R --elements quad-dominant -j 1` and
-`gmsh MODEL -2 -clmax h -setnumber Mesh.RecombineAll 1 -nt 1` (Blossom), whole processes under a time
-limit; both MSH files read back and measured here alike: quads and triangles, the quads' share of the
+"""Quad-dominant or all-quad whole models against Gmsh's recombination (issue 32): every model at
+h = R x the bounding-box diagonal, `wefm mesh-model MODEL --size-ratio R --elements quad-dominant -j 1`
+and `gmsh MODEL -2 -clmax h -setnumber Mesh.RecombineAll 1 -nt 1` (Blossom); with `--elements quad`,
+wefm's all-quad meshes against Gmsh's with `-setnumber Mesh.SubdivisionAlgorithm 1` too (both split
+every element into quads, sides about h / 2). Whole processes under a time limit; both MSH files read back and measured here alike: quads and triangles, the quads' share of the
 3D area, the scaled Jacobian of the quads (min over the corners of (e1 x e2) . n / (|e1| |e2|), n the
 quad's mean normal; below 0 is folded or inverted), element edges used once (open) or more than twice
 (non-manifold), and wall time. wefm's report says which open or non-manifold edges its B-rep explains.
 
-    quad_models.py WEFM OUTDIR MODEL... [--ratio R] [--timeout S]
+    quad_models.py WEFM OUTDIR MODEL... [--ratio R] [--timeout S] [--elements quad-dominant|quad]
 
 Prints a Markdown table and a summary; writes OUTDIR/quads.json. Needs /usr/bin/python3 (numpy, meshio).
 """
@@ -74,13 +75,15 @@ def main():
     ap.add_argument("models", nargs="+")
     ap.add_argument("--ratio", type=float, default=0.025)
     ap.add_argument("--timeout", type=float, default=300)
+    ap.add_argument("--elements", choices=["quad-dominant", "quad"], default="quad-dominant")
     a = ap.parse_args()
+    subdivide = ["-setnumber", "Mesh.SubdivisionAlgorithm", "1"] if a.elements == "quad" else []
     os.makedirs(a.outdir, exist_ok=True)
     rows = []
     for model in a.models:
         name = os.path.splitext(os.path.basename(model))[0]
         base = os.path.join(a.outdir, name)
-        rc, wall = timed([a.wefm, "mesh-model", model, "--size-ratio", repr(a.ratio), "--elements", "quad-dominant", "-j", "1",
+        rc, wall = timed([a.wefm, "mesh-model", model, "--size-ratio", repr(a.ratio), "--elements", a.elements, "-j", "1",
                           "-o", base + ".wefm.msh", "--report", base + ".wefm.json", "-q"], base + ".wefm.log", a.timeout)
         row = {"model": name, "wefm": {"exit": rc, "wall": wall}}
         if rc in (0, 5) and os.path.exists(base + ".wefm.json"):
@@ -88,7 +91,7 @@ def main():
             row["h"] = rep["size"]
             c = rep["conformity"]
             row["wefm"].update(measure(base + ".wefm.msh"), unexplained=c["unexplained_open_edges"] + c["unexplained_non_manifold_edges"])
-            rc, wall = timed(["gmsh", model, "-2", "-clmax", repr(rep["size"]), "-setnumber", "Mesh.RecombineAll", "1", "-nt", "1",
+            rc, wall = timed(["gmsh", model, "-2", "-clmax", repr(rep["size"]), "-setnumber", "Mesh.RecombineAll", "1", *subdivide, "-nt", "1",
                               "-format", "msh41", "-o", base + ".gmsh.msh"], base + ".gmsh.log", a.timeout)
             row["gmsh"] = {"exit": rc, "wall": wall}
             if rc == 0 and os.path.exists(base + ".gmsh.msh"):

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""`wefm mesh-model --elements quad-dominant` (issue 32 item 1, whole models): each face's triangles
-paired into quads by the library on the model's shared edge nodes, the quads written back after the
-faces are welded and checked as triangles.
+"""`wefm mesh-model --elements quad-dominant` and `--elements quad` (issue 32 item 1, whole models):
+each face's triangles paired into quads by the library on the model's shared edge nodes (all quads:
+every element then split at its edges' middles and centre, the mapped faces' grids halved), the
+quads written back after the faces are welded and checked as triangles.
 
 Checked on two small solids of tests/cad/data at 1/40 of the diagonal (pin_plate.brep, a thin pin on a
 plate whose side is a mapped strip; fillet_chamfer_box.brep, whose thin fillet and chamfer are
@@ -12,7 +13,10 @@ merged with their neighbours), from the MSH itself:
   computed here (min over its corners of (e1 x e2) . n / (|e1| |e2|), n its mean normal), at least
   0.3, and equal to what the report says within rounding;
 - the mapped tube's quads kept as quads;
-- `--elements quad` (all quads) refused for whole models with exit 2 and a reason; a bad value too.
+- all quads: the same, with no triangle at all, and the mapped tube's grid halved both ways (four
+  times its quads); the B-rep's edges carry their segments' middles, which the conformity check
+  expects (0 unexplained edges);
+- a bad value refused with exit 2 and a reason, no file written.
 
 usage: quad_dominant_test.py WEFM PIN_PLATE.brep BOX.brep
 """
@@ -53,8 +57,8 @@ def area(p):
     return a + (0.5 * norm(cross(sub(p[2], p[0]), sub(p[3], p[0]))) if len(p) == 4 else 0)
 
 
-def check(wefm, model, tmp, name):
-    report, msh, _ = mesh_model(wefm, model, tmp, name, "--elements", "quad-dominant")
+def check(wefm, model, tmp, name, kind="quad-dominant"):
+    report, msh, _ = mesh_model(wefm, model, tmp, name + "." + kind, "--elements", kind)
     faces, points = read_msh_faces(msh, types=(2, 3))
     elements = [e for es in faces.values() for e in es]
     assert all(len(e) in (3, 4) for e in elements)
@@ -65,10 +69,14 @@ def check(wefm, model, tmp, name):
     qa = sum(area([points[v] for v in q]) for q in quads)
     ta = sum(area([points[v] for v in e]) for e in elements)
     q = report["quads"]
-    print(f"{name}: {len(quads)} quads, {len(elements) - len(quads)} triangles, {100 * qa / ta:.1f} % of the area in quads, "
+    print(f"{name}, {kind}: {len(quads)} quads, {len(elements) - len(quads)} triangles, {100 * qa / ta:.1f} % of the area in quads, "
           f"scaled Jacobian min {min(sj):.3f} mean {sum(sj) / len(sj):.3f}")
     assert q["quads"] == len(quads), (q, len(quads))
     assert qa / ta >= 0.9 and abs(q["area_fraction"] - qa / ta) < 1e-9, (q, qa / ta)
+    if kind == "quad":
+        assert len(quads) == len(elements), f"{name}: {len(elements) - len(quads)} triangles in an all-quad mesh"
+        c = report["conformity"]
+        assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0, c
     assert min(sj) >= 0.3 and abs(q["scaled_jacobian_min"] - min(sj)) < 1e-9, (q, min(sj))
     return report, faces
 
@@ -80,8 +88,13 @@ def main():
         tube = next(f for f in r["faces"] if f["surface_type"] == "cylinder")
         assert tube["type"] == "transfinite", tube
         assert all(len(e) == 4 for e in faces[tube["face"]]), "the mapped tube's quads were split"
+        r4, faces4 = check(wefm, pin_plate, tmp, "pin_plate", "quad")
+        tube4 = next(f for f in r4["faces"] if f["face"] == tube["face"])
+        assert tube4["type"] == "transfinite", tube4
+        assert len(faces4[tube["face"]]) == 4 * len(faces[tube["face"]]), (len(faces4[tube["face"]]), len(faces[tube["face"]]))
         check(wefm, box, tmp, "box")
-        for bad, why in (("quad", "not for whole models"), ("hexes", "expected tri or quad-dominant")):
+        check(wefm, box, tmp, "box", "quad")
+        for bad, why in (("hexes", "expected tri, quad-dominant or quad"),):
             p = subprocess.run([wefm, "mesh-model", box, "--size-ratio", "0.025", "-o", os.path.join(tmp, "x.msh"), "--elements", bad],
                                capture_output=True, text=True, timeout=120)
             assert p.returncode == 2 and why in p.stderr, (bad, p.returncode, p.stderr)
