@@ -80,7 +80,7 @@ std::vector<OptionSpec> mesh_model_specs() {
       {"elements", 0, "tri|quad-dominant|quad", "free faces: triangles, or quads where pairs of triangles make good ones "
                                                "(scaled Jacobian >= 0.3; mapped faces then keep their quads too), or all quads: "
                                                "every element of those split into quads at its edges' middles and centre, "
-                                               "sides about H / 2 (as Gmsh's subdivision)", "tri", false},
+                                               "mapped faces' grids halved, sides about H / 2 (as Gmsh's subdivision)", "tri", false},
       {"max-elements", 0, "N", "refuse (exit 5) before meshing when the model would need more triangles than N, "
                                "and cap each face's refinement at N; 0 = no limit", std::to_string(kDefaultMaxElements), false},
       {"report", 0, "FILE.json", "quality report per face and overall", "", false},
