@@ -1,9 +1,12 @@
 #pragma once
 // Solved faces for the meshing tests: a face, its topology and its domain, built from the
 // generators of meshes.hpp.
+#include <map>
 #include <memory>
+#include <utility>
 
 #include "solve_helpers.hpp"
+#include "wefm/common/element_corners.hpp"
 #include "wefm/core/meshing/domain_mesh.hpp"
 #include "wefm/core/meshing/surface_locator.hpp"
 
@@ -33,6 +36,17 @@ inline SolvedFace solved(const TriMesh& m, double s = 0.0, const std::vector<std
 
 inline TriMesh unit_square(int n) {
   return grid(n, n, [](double u, double v) { return Vec3(u, v, 0.0); });
+}
+
+// Every edge of a domain mesh (triangles, quads, or quads with triangles ending in -1): how many
+// elements use it, each way round counted apart.
+inline std::map<std::pair<Index, Index>, int> directed_edges(const meshing::DomainMesh& dm) {
+  std::map<std::pair<Index, Index>, int> out;
+  const size_t npe = static_cast<size_t>(dm.nodes_per_element);
+  for (size_t e = 0; e < dm.elements.size() / npe; ++e)
+    for (size_t k = 0, n = wefm_common::element_corners(&dm.elements[npe * e], dm.nodes_per_element); k < n; ++k)
+      out[{dm.elements[npe * e + k], dm.elements[npe * e + (k + 1) % n]}]++;
+  return out;
 }
 
 // Largest distance from a mesh node to the 3D triangulation, relative to its bounding box.

@@ -36,18 +36,6 @@ SlitPlate slit_plate() {
   return p;
 }
 
-size_t corners(const meshing::DomainMesh& dm, size_t e) {
-  return dm.nodes_per_element == 3 ? 3 : dm.elements[4 * e + 3] < 0 ? 3 : 4;
-}
-
-std::map<std::pair<Index, Index>, int> directed_edges(const meshing::DomainMesh& dm) {
-  std::map<std::pair<Index, Index>, int> out;
-  const size_t npe = static_cast<size_t>(dm.nodes_per_element);
-  for (size_t e = 0; e < dm.elements.size() / npe; ++e)
-    for (size_t k = 0, n = corners(dm, e); k < n; ++k) out[{dm.elements[npe * e + k], dm.elements[npe * e + (k + 1) % n]}]++;
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("a scar stays an edge of the mesh in every element kind, its nodes shared by both sides") {
@@ -59,7 +47,7 @@ TEST_CASE("a scar stays an edge of the mesh in every element kind, its nodes sha
     o.size = 0.05;
     o.elements = kind;
     const auto dm = f.mesh_domain(o);
-    const auto edges = directed_edges(dm);
+    const auto edges = test::directed_edges(dm);
     // Conforming: each directed edge once; one way round only on the plate's outer sides.
     for (const auto& [e, n] : edges) {
       CHECK(n == 1);

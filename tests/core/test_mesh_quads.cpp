@@ -13,7 +13,7 @@ using namespace wefm;
 namespace {
 
 // Corners of element e: 3 for a quad-dominant mesh's triangle (fourth node -1), else 4.
-size_t corners(const meshing::DomainMesh& dm, size_t e) { return dm.elements[4 * e + 3] < 0 ? 3 : 4; }
+size_t corners(const meshing::DomainMesh& dm, size_t e) { return wefm_common::element_corners(&dm.elements[4 * e], 4); }
 
 double area3(const meshing::DomainMesh& dm, size_t e) {
   auto X = [&](size_t k) { return dm.xyz[static_cast<size_t>(dm.elements[4 * e + k])]; };
@@ -33,18 +33,10 @@ double signed_area_uv(const meshing::DomainMesh& dm, size_t e) {
   return 0.5 * a;
 }
 
-// Every edge of the mesh: how many elements use it (each way round counted apart).
-std::map<std::pair<Index, Index>, int> directed_edges(const meshing::DomainMesh& dm) {
-  std::map<std::pair<Index, Index>, int> out;
-  for (size_t e = 0; e < dm.elements.size() / 4; ++e)
-    for (size_t k = 0, n = corners(dm, e); k < n; ++k) out[{dm.elements[4 * e + k], dm.elements[4 * e + (k + 1) % n]}]++;
-  return out;
-}
-
 // Conforming and oriented: each directed edge used once, and an edge used one way round only on the
 // boundary (nodes 0..boundary_nodes-1).
 void check_conforming(const meshing::DomainMesh& dm) {
-  const auto edges = directed_edges(dm);
+  const auto edges = test::directed_edges(dm);
   int boundary = 0;
   for (const auto& [e, n] : edges) {
     CAPTURE(e.first);

@@ -78,12 +78,14 @@ void boundary_nodes(const std::vector<LoopNodes>& loops, std::vector<P2>& pts, s
 
 // The segments given both ways (a scar: the boundary runs along both its sides), once each.
 std::vector<std::array<Index, 2>> scar_segments(const std::vector<std::array<Index, 2>>& segs) {
+  auto directed_key = [](Index from, Index to) {
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(from)) << 32) | static_cast<std::uint32_t>(to);
+  };
   std::unordered_set<std::uint64_t> directed;
-  for (const auto& s : segs) directed.insert((static_cast<std::uint64_t>(static_cast<std::uint32_t>(s[0])) << 32) | static_cast<std::uint32_t>(s[1]));
+  for (const auto& s : segs) directed.insert(directed_key(s[0], s[1]));
   std::vector<std::array<Index, 2>> out;
   for (const auto& s : segs)
-    if (s[0] < s[1] && directed.count((static_cast<std::uint64_t>(static_cast<std::uint32_t>(s[1])) << 32) | static_cast<std::uint32_t>(s[0])))
-      out.push_back(s);
+    if (s[0] < s[1] && directed.count(directed_key(s[1], s[0]))) out.push_back(s);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

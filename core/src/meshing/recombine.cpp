@@ -288,9 +288,9 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   auto midpoint = [&](Index a, Index b) {
     const auto [it, fresh] = mid.emplace(edge_key(a, b), 0);
     if (!fresh) return it->second;
-    const bool on_boundary = uses[edge_key(a, b)] == 1, on_hard = hard.has(a, b);
+    const bool fixed = uses[edge_key(a, b)] == 1 || hard.has(a, b);
     const Vec3 chord = 0.5 * (m.xyz[static_cast<size_t>(a)] + m.xyz[static_cast<size_t>(b)]);
-    it->second = add(0.5 * (m.uv[static_cast<size_t>(a)] + m.uv[static_cast<size_t>(b)]), on_boundary || on_hard, on_boundary || on_hard ? &chord : nullptr);
+    it->second = add(0.5 * (m.uv[static_cast<size_t>(a)] + m.uv[static_cast<size_t>(b)]), fixed, fixed ? &chord : nullptr);
     return it->second;
   };
   std::vector<Index> out;

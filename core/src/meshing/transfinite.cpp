@@ -158,11 +158,13 @@ void halve_grid(Index& n, Index& m, std::vector<P2>& uv, std::vector<Vec3>& xyz,
       // The old nodes around (i, j): one, the two ends of an old edge, or an old cell's four corners.
       const Index i0 = i / 2, i1 = (i + 1) / 2, j0 = j / 2, j1 = (j + 1) / 2;
       const size_t k = new_id(i, j);
-      uv2[k] = 0.25 * (uv[old_id(i0, j0)] + uv[old_id(i1, j0)] + uv[old_id(i0, j1)] + uv[old_id(i1, j1)]);
-      xyz2[k] = 0.25 * (xyz[old_id(i0, j0)] + xyz[old_id(i1, j0)] + xyz[old_id(i0, j1)] + xyz[old_id(i1, j1)]);
       side2[k] = i == 0 || j == 0 || i == n2 || j == m2;
-      if (i % 2 == 0 && j % 2 == 0) uv2[k] = uv[old_id(i0, j0)], xyz2[k] = xyz[old_id(i0, j0)];
-      else if (side2[k]) xyz2[k] = 0.5 * (xyz[old_id(i0, j0)] + xyz[old_id(i1, j1)]);
+      if (i % 2 == 0 && j % 2 == 0) {
+        uv2[k] = uv[old_id(i0, j0)], xyz2[k] = xyz[old_id(i0, j0)];
+      } else {
+        uv2[k] = 0.25 * (uv[old_id(i0, j0)] + uv[old_id(i1, j0)] + uv[old_id(i0, j1)] + uv[old_id(i1, j1)]);
+        if (side2[k]) xyz2[k] = 0.5 * (xyz[old_id(i0, j0)] + xyz[old_id(i1, j1)]);
+      }
     }
   n = n2, m = m2;
   uv = std::move(uv2), xyz = std::move(xyz2), on_side = std::move(side2);
