@@ -902,7 +902,7 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
   // the slivers the geometry forces from those the mesher left.
   Json corners = Json::array();
   for (const FaceMeshRun& r : runs)
-    for (const SharpCorner& c : sharp_corners(*r.face, kFloorCornerDegrees)) {
+    for (const FaceCorner& c : sharp_corners(*r.face, kFloorCornerDegrees)) {
       const double* x = &r.face->xyz[3 * static_cast<size_t>(c.vertex)];
       corners.push_back({{"face", r.face->index}, {"degrees", c.degrees}, {"point", {x[0], x[1], x[2]}}, {"edges", c.edges}});
     }

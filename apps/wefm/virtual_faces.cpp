@@ -14,6 +14,7 @@
 #include "cad_wefm.hpp"
 #include "coincident_faces.hpp"
 #include "conformal_first.hpp"
+#include "face_corners.hpp"
 #include "owned.hpp"
 
 namespace wefm_cli {
@@ -55,15 +56,6 @@ const double* at(const wefm_cad::CadFace& f, int32_t v) { return &f.xyz[3 * stat
 
 double distance(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
-
-Normal facet_normal(const wefm_cad::CadFace& f, size_t t) {
-  const double *a = at(f, f.triangles[3 * t]), *b = at(f, f.triangles[3 * t + 1]), *c = at(f, f.triangles[3 * t + 2]);
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  Normal n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (double& x : n) x = len > 0 ? x / len : 0;
-  return n;
 }
 
 uint64_t pair_key(int32_t a, int32_t b) {
@@ -351,47 +343,6 @@ std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, s
 }
 
 }  // namespace
-
-// The angle is the turn of the loop seen along the facets' normal at the corner, so a corner of 350
-// degrees (a notch) is not taken for one of 10.
-std::vector<SharpCorner> sharp_corners(const wefm_cad::CadFace& f, double below) {
-  std::vector<SharpCorner> out;
-  std::map<int32_t, Normal> normal;  // at the corner vertices: sum of the facet normals around
-  auto chain = [&](const wefm_cad::CadEdgeUse& u) {
-    std::vector<int32_t> c = f.edges[static_cast<size_t>(u.edge)].vertices;
-    if (u.reversed) std::reverse(c.begin(), c.end());
-    return c;
-  };
-  for (const auto& loop : f.loops)
-    for (const auto& u : loop) normal[chain(u).front()] = {0, 0, 0};
-  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
-    for (size_t c = 0; c < 3; ++c) {
-      const auto it = normal.find(f.triangles[3 * t + c]);
-      if (it == normal.end()) continue;
-      const Normal n = facet_normal(f, t);
-      for (size_t k = 0; k < 3; ++k) it->second[k] += n[k];
-    }
-  for (const auto& loop : f.loops)
-    for (size_t k = 0; k < loop.size(); ++k) {
-      // A pole (a degenerate edge) between two edges is a corner of the two: a patch narrowing to
-      // a point.
-      size_t next = (k + 1) % loop.size();
-      if (f.edges[static_cast<size_t>(loop[next].edge)].vertices.size() < 2) next = (next + 1) % loop.size();
-      const auto in = chain(loop[k]), out_chain = chain(loop[next]);
-      if (in.size() < 2 || out_chain.size() < 2 || in.back() != out_chain.front()) continue;
-      const double *p = at(f, in[in.size() - 2]), *q = at(f, in.back()), *r = at(f, out_chain[1]);
-      const double a[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, b[3] = {r[0] - q[0], r[1] - q[1], r[2] - q[2]};
-      const Normal& n = normal[in.back()];
-      const double cross = (a[1] * b[2] - a[2] * b[1]) * n[0] + (a[2] * b[0] - a[0] * b[2]) * n[1] + (a[0] * b[1] - a[1] * b[0]) * n[2];
-      const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if (!(nn > 0)) continue;
-      const double angle = 180 - std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180 / kPi;
-      if (angle < below)
-        out.push_back({angle, {f.edges[static_cast<size_t>(loop[k].edge)].id, f.edges[static_cast<size_t>(loop[next].edge)].id}, in.back()});
-    }
-  std::sort(out.begin(), out.end(), [](const SharpCorner& a, const SharpCorner& b) { return a.degrees < b.degrees; });
-  return out;
-}
 
 namespace {
 

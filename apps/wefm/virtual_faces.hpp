@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cad_model.hpp"
+#include "face_corners.hpp"
 
 namespace wefm_cli {
 
@@ -51,20 +52,9 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
 std::vector<int> triangle_faces(const VirtualTopology& vt, size_t virtual_face, const wefm_cad::CadFace& face,
                                 const std::vector<double>& xyz, const std::vector<int32_t>& tris, double h);
 
-// A corner of a face sharper than some angle: where two of its loop's edges meet (or a degenerate
-// edge between them, a pole) turning by more than 180 degrees less it, seen along the facets' normal.
-struct SharpCorner {
-  double degrees = 0;                 // the angle inside the face
-  std::array<long long, 2> edges{};   // the ids of the model edges meeting there
-  int32_t vertex = -1;                // the corner's vertex in the face's xyz
-};
-
 // A corner this sharp caps every triangle in it below Lo lambda 0.3 (0.296 at 10 degrees: a triangle
 // with an angle t has lambda at most 2 sqrt(3) sin t / (2 + 4 sin^2(t / 2))), whatever the mesh.
 constexpr double kFloorCornerDegrees = 10;
-
-// The face's corners sharper than `below` degrees, sharpest first.
-std::vector<SharpCorner> sharp_corners(const wefm_cad::CadFace& f, double below);
 
 // The report's list of merges (face, merged_into, reason, width, dihedral_degrees, shared_edges),
 // and the faces merged into one face.
