@@ -523,6 +523,25 @@ EdgeNodes uniform_edge_nodes(const CadFace& face, const CadEdge& edge, long long
   return place(face, edge, targets);
 }
 
+EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const EdgeNodes& nodes, long long segments) {
+  const size_t n = nodes.xyz.size() / 3 - 1;
+  const double length = chain_length(face, edge);
+  if (n < 1 || segments < 1) return uniform_edge_nodes(face, edge, std::max(1LL, segments));
+  // The old nodes' arc lengths: their chords, scaled to the chain's length (the nodes lie on it).
+  std::vector<double> s(n + 1, 0.0);
+  for (size_t k = 1; k <= n; ++k) s[k] = s[k - 1] + distance(&nodes.xyz[3 * (k - 1)], &nodes.xyz[3 * k]);
+  if (!(s[n] > 0)) return uniform_edge_nodes(face, edge, segments);
+  std::vector<double> targets;
+  for (long long j = 0; j <= segments; ++j) {
+    const double x = static_cast<double>(j) * static_cast<double>(n) / static_cast<double>(segments);
+    const size_t k = std::min(n - 1, static_cast<size_t>(x));
+    const double t = x - static_cast<double>(k);
+    targets.push_back(length * (s[k] + t * (s[k + 1] - s[k])) / s[n]);
+  }
+  targets.front() = 0, targets.back() = length;
+  return place(face, edge, targets);
+}
+
 std::vector<double> local_face_sizes(const CadModel& model, double h) {
   std::vector<double> sizes(model.faces.size(), h);
   for (size_t k = 0; k < model.faces.size(); ++k) {

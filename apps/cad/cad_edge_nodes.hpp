@@ -36,6 +36,12 @@ double face_width(const CadFace& face);
 // Nodes along an edge's facet chain at `segments` (>= 1) equal steps of its 3D arc length.
 EdgeNodes uniform_edge_nodes(const CadFace& face, const CadEdge& edge, long long segments);
 
+// The same edge's nodes at `segments` (>= 1) segments, spaced as `nodes` were (graded the same way
+// along the edge): node j goes where node j n / segments of the n old ones was, between old nodes
+// at the fraction of the way. For matching counts (mapped faces' opposite sides) without losing the
+// grading the edge's neighbours asked for.
+EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const EdgeNodes& nodes, long long segments);
+
 // Per model edge id: its nodes (at least one segment; at least three for a closed edge, so a circle
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
 // empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments also

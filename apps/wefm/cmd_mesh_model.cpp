@@ -30,6 +30,7 @@
 #include "face_threads.hpp"
 #include "flatten_settings.hpp"
 #include "mesh_formats.hpp"
+#include "mapped_faces.hpp"
 #include "mapped_tubes.hpp"
 #include "model_mesh.hpp"
 #include "output_file.hpp"
@@ -74,6 +75,11 @@ std::vector<OptionSpec> mesh_model_specs() {
                                 "triangles still written as its own)", "", false},
       {"transfinite", 0, "N", "mesh face N transfinite (four-sided faces; a face whose opposite sides get different node "
                               "counts is meshed free, with a note)", "", true},
+      {"mapped", 0, "auto|named", "auto: every four-sided face (one loop, four corners of 30 to 150 degrees, opposite "
+                                  "sides within 3x) is meshed transfinite, the node counts of opposite sides matched "
+                                  "across the model by adding segments (at most doubling an edge's); a face that cannot "
+                                  "be matched, or whose grid would have a scaled Jacobian under 0.3, is meshed free. "
+                                  "named: only the --transfinite faces", "auto with quads, named with tri", false},
       {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, a seam and two ends with as "
                                  "many segments, is meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
@@ -100,10 +106,10 @@ void print_help() {
       "Usage: wefm mesh-model MODEL.step|.iges|.brep (--size H | --size-ratio R) -o FILE.msh [options]\n\n"
       "Meshes a whole CAD model the paper's way: every model edge is discretised once in 3D at size H, so\n"
       "the faces sharing it get the same nodes; each face is flattened, meshed in its domain (free, or\n"
-      "transfinite for the faces named with --transfinite) and mapped back; the face meshes are welded into\n"
-      "one conforming surface mesh. Writes Gmsh MSH 4.1 ASCII (a physical group \"face_N\" per face), OBJ (a\n"
-      "group per face), VTK, VTU or PLY (face_id per triangle); prints Lo's lambda per face and overall and\n"
-      "the conformity count.\n\n%s\nOptions:\n%s\n%s",
+      "transfinite: four-sided faces with quad elements, faces named with --transfinite, thin tubes) and\n"
+      "mapped back; the face meshes are welded into one conforming surface mesh. Writes Gmsh MSH 4.1\n"
+      "ASCII (a physical group \"face_N\" per face), OBJ (a group per face), VTK, VTU or PLY (face_id per\n"
+      "triangle); prints Lo's lambda per face and overall and the conformity count.\n\n%s\nOptions:\n%s\n%s",
       mesh_formats_help(), format_options(mesh_model_specs()).c_str(), exit_codes_help());
 }
 
@@ -152,11 +158,16 @@ wefm_status fetch(std::vector<T>& out, G get) {
   return n == 0 ? WEFM_OK : get(out.data(), n, &n);
 }
 
+// A face mapped because it was found four-sided (not named by the caller) is meshed free instead
+// where its grid's worst quad has a scaled Jacobian below this: issue 32's floor for quads.
+constexpr double kMappedQuadFloor = 0.3;
+
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,
 // so a conformal domain that is unusable is meshed anyway (and fails or not as the mesher says).
+// `mapped_floor`: a transfinite mesh whose worst quad is below it is replaced by a free one.
 void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, const wefm_mesh_options& mesh_options,
-                      const wefm_mesh_options* mapped, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
-                      CancelWatcher& watcher) {
+                      const wefm_mesh_options* mapped, double mapped_floor,
+                      const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, CancelWatcher& watcher) {
   auto fail = [&](int code, const std::string& why) {
     r.exit_code = code;
     r.status = "failed";
@@ -213,6 +224,18 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
       st = wefm_face_mesh_domain(raw, mapped, &dm_raw);
       free_mesh = st == WEFM_ERROR_UNSUPPORTED;
       if (free_mesh) r.mapped_refused = wefm_face_last_error(raw);
+      wefm_mesh_report grid;
+      wefm_mesh_report_init(&grid, sizeof grid);
+      if (st == WEFM_OK && mapped_floor > 0 && wefm_domain_mesh_get_report(dm_raw, &grid) == WEFM_OK && grid.quads > 0 &&
+          grid.scaled_jacobian_min < mapped_floor) {
+        char text[128];
+        std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below %g", grid.scaled_jacobian_min,
+                      mapped_floor);
+        r.mapped_refused = text;
+        wefm_domain_mesh_release(dm_raw);
+        dm_raw = nullptr;
+        free_mesh = true;
+      }
     }
     if (free_mesh) {
       r.type = "free";
@@ -264,22 +287,23 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
 }
 
 // `mapped` (or null): transfinite options tried first; where the library refuses them (not four
-// sides with matching node counts) the face is meshed with `mesh_options` on the same domain.
+// sides with matching node counts), or their grid is below `mapped_floor` (0: any grid), the face is
+// meshed with `mesh_options` on the same domain.
 // `conformal_first`: kConformalS is tried before the settings' s (conformal_first.hpp).
 void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, bool conformal_first, const wefm_mesh_options& mesh_options,
-                   const wefm_mesh_options* mapped, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
+                   const wefm_mesh_options* mapped, double mapped_floor, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
                    CancelWatcher& watcher) {
   if (conformal_first && settings.options.s != kConformalS) {
     wefm_options conformal = settings.options;
     conformal.s = kConformalS;
-    flatten_and_mesh(r, conformal, false, mesh_options, mapped, edge_nodes, watcher);
+    flatten_and_mesh(r, conformal, false, mesh_options, mapped, mapped_floor, edge_nodes, watcher);
     if (r.status != "failed" || r.exit_code == stop_exit_code() || r.exit_code == kExitInvalid || r.exit_code == kExitUsage) return;
     const double time_solve = r.time_solve, time_mesh = r.time_mesh;
     const std::string why = r.reason;
     reset_run(r, r.edge_refinements);
     r.time_solve = time_solve, r.time_mesh = time_mesh, r.conformal_refused = why;
   }
-  flatten_and_mesh(r, settings.options, true, mesh_options, mapped, edge_nodes, watcher);
+  flatten_and_mesh(r, settings.options, true, mesh_options, mapped, mapped_floor, edge_nodes, watcher);
 }
 
 // About how many triangles the faces need at their sizes: each face's area over an equilateral
@@ -290,41 +314,6 @@ double estimated_triangles(const wefm_cad::CadModel& model, const std::vector<do
     total += wefm_cad::face_area(model.faces[k]) / (0.433 * face_sizes[k] * face_sizes[k]);
   }
   return total;
-}
-
-// A face whose domain boundary, discretised at its edges' nodes, crosses itself (chords of a coarse
-// edge cutting across a narrow part of the domain) is meshed again with finer nodes on its edges:
-// its size halves, every edge whose nodes change is discretised again, and every face using such
-// an edge is meshed again with the new nodes, so the model stays conforming. At most this many rounds.
-constexpr int kEdgeRefinements = 3;
-
-bool boundary_failure(const FaceMeshRun& r) {
-  return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE;
-}
-
-std::vector<size_t> refine_for_failed_faces(const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs, double size,
-                                            double gradation, std::vector<double>& face_sizes,
-                                            std::map<long long, wefm_cad::EdgeNodes>& edge_nodes) {
-  std::set<size_t> faces;
-  for (size_t i = 0; i < runs.size(); ++i)
-    if (boundary_failure(runs[i])) {
-      face_sizes[i] *= 0.5;
-      faces.insert(i);
-    }
-  if (faces.empty()) return {};
-  auto finer = wefm_cad::discretise_model_edges(model, size, face_sizes, gradation);
-  std::set<long long> changed;
-  for (const auto& [id, nodes] : finer) {
-    const auto it = edge_nodes.find(id);
-    if (it == edge_nodes.end() || it->second.xyz != nodes.xyz) changed.insert(id);
-  }
-  edge_nodes = std::move(finer);
-  for (size_t i = 0; i < runs.size(); ++i)
-    for (const wefm_cad::CadEdge& e : model.faces[i].edges)
-      if (changed.count(e.id)) faces.insert(i);
-  std::vector<size_t> todo(faces.begin(), faces.end());
-  for (size_t i : todo) reset_run(runs[i], runs[i].edge_refinements + 1);
-  return todo;
 }
 
 // The domain mesher breaks a face's boundary at a sharp corner of its flattened domain; a corner
@@ -595,6 +584,7 @@ struct MeshModelRequest {
   wefm_cad::TessellationSettings tess;
   std::set<long long> transfinite;  // face numbers
   bool quiet = false, local_size = true, merge_faces = true, mapped_tubes = true;
+  bool mapped_auto = false;  // four-sided faces found and mapped (--mapped auto)
   bool conformal_first = true;  // no --s: kConformalS first
   int elements = WEFM_ELEMENTS_TRIANGLES;
 };
@@ -648,6 +638,12 @@ int parse_request(const std::vector<std::string>& argv, MeshModelRequest& q) {
   q.local_size = !args.has("no-local-size");
   q.merge_faces = !args.has("no-merge-faces");
   q.mapped_tubes = !args.has("no-mapped-tubes");
+  q.mapped_auto = q.elements != WEFM_ELEMENTS_TRIANGLES;
+  if (args.has("mapped")) {
+    const std::string& m = args.value("mapped");
+    if (m != "auto" && m != "named") return usage("--mapped: expected auto or named, got '" + m + "'");
+    q.mapped_auto = m == "auto";
+  }
   q.model_path = args.positionals[0];
   std::vector<NamedPath> outputs = {{"-o", q.out_path}};
   if (args.has("report")) {
@@ -665,9 +661,56 @@ struct ModelPlan {
   double gradation = 0;
   VirtualTopology virtual_faces;
   std::map<long long, wefm_cad::EdgeNodes> edge_nodes;
-  std::set<size_t> mapped;
+  std::set<size_t> tubes;   // thin tubes meshed as mapped strips (map_thin_tubes)
+  MappedFaces mapping;      // named and four-sided faces meshed mapped (map_four_sided_faces)
   double time = 0;
 };
+
+// Every model edge discretised at the faces' sizes, then the thin tubes' and the mapped faces' edges
+// given the counts their mapping needs.
+void discretise_and_map(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan) {
+  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation);
+  plan.tubes.clear();
+  if (q.mapped_tubes && q.local_size) plan.tubes = map_thin_tubes(model, size, plan.face_sizes, plan.edge_nodes);
+  std::vector<size_t> named;
+  for (size_t i = 0; i < model.faces.size(); ++i)
+    if (q.transfinite.count(model.faces[i].index) && !plan.tubes.count(i)) named.push_back(i);
+  plan.mapping = map_four_sided_faces(model, named, q.mapped_auto, plan.tubes, plan.edge_nodes);
+}
+
+// A face whose domain boundary, discretised at its edges' nodes, crosses itself (chords of a coarse
+// edge cutting across a narrow part of the domain) is meshed again with finer nodes on its edges:
+// its size halves, every edge whose nodes change is discretised again, and every face using such
+// an edge is meshed again with the new nodes, so the model stays conforming. At most this many rounds.
+constexpr int kEdgeRefinements = 3;
+
+bool boundary_failure(const FaceMeshRun& r) {
+  return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE;
+}
+
+std::vector<size_t> refine_for_failed_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
+                                            double size, ModelPlan& plan) {
+  std::set<size_t> faces;
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (boundary_failure(runs[i])) {
+      plan.face_sizes[i] *= 0.5;
+      faces.insert(i);
+    }
+  if (faces.empty()) return {};
+  const auto before = std::move(plan.edge_nodes);
+  discretise_and_map(q, model, size, plan);
+  std::set<long long> changed;
+  for (const auto& [id, nodes] : plan.edge_nodes) {
+    const auto it = before.find(id);
+    if (it == before.end() || it->second.xyz != nodes.xyz) changed.insert(id);
+  }
+  for (size_t i = 0; i < runs.size(); ++i)
+    for (const wefm_cad::CadEdge& e : model.faces[i].edges)
+      if (changed.count(e.id)) faces.insert(i);
+  std::vector<size_t> todo(faces.begin(), faces.end());
+  for (size_t i : todo) reset_run(runs[i], runs[i].edge_refinements + 1);
+  return todo;
+}
 
 // Returns -1 to go on, kExitUsage for a --transfinite face the model does not have, or kExitSolver
 // when the model would need more than the limits allow. Merging faces (virtual_faces) changes `model`.
@@ -701,8 +744,7 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
                  q.model_path.c_str(), size, estimate, estimate_mb, q.max_elements, memory_limit);
     return kExitSolver;
   }
-  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation);
-  if (q.mapped_tubes && q.local_size) plan.mapped = map_thin_tubes(model, size, plan.face_sizes, plan.edge_nodes);
+  discretise_and_map(q, model, size, plan);
   plan.time = since(t0);
   return -1;
 }
@@ -726,10 +768,12 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
   auto mesh_faces = [&](const std::vector<size_t>& todo) {
     auto work = [&](size_t k) {
       const size_t i = todo[k];
-      const bool map = q.transfinite.count(runs[i].face->index) || plan.mapped.count(i);
+      const bool named = q.transfinite.count(runs[i].face->index) > 0;
+      const bool map = named || plan.tubes.count(i) || plan.mapping.faces.count(i);
+      const double quad_floor = map && !named && !plan.tubes.count(i) ? kMappedQuadFloor : 0;
       wefm_mesh_options options = free_options, map_options = tf_options;
       options.size = map_options.size = plan.face_sizes[i];
-      mesh_one_face(runs[i], q.settings, q.conformal_first, options, map ? &map_options : nullptr, plan.edge_nodes, watcher);
+      mesh_one_face(runs[i], q.settings, q.conformal_first, options, map ? &map_options : nullptr, quad_floor, plan.edge_nodes, watcher);
       return true;
     };
     auto finished = [&](size_t k, size_t done) {
@@ -758,7 +802,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
   for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
   mesh_or_copy(todo);
   for (int round = 0; round < kEdgeRefinements && !interrupted(); ++round) {
-    todo = refine_for_failed_faces(model, runs, size, plan.gradation, plan.face_sizes, plan.edge_nodes);
+    todo = refine_for_failed_faces(q, model, runs, size, plan);
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
@@ -796,8 +840,28 @@ struct MeshModelTimes {
   double total = 0, edges = 0, faces = 0, weld = 0, check = 0, write = 0;
 };
 
+// The faces meant to be mapped (four-sided or named): how many, meshed transfinite, left free because
+// their counts could not be matched, meshed free at the library's say (not four corners in the
+// domain, counts unlike) or below the quad floor; the edges recounted to match.
+struct MappedCounts {
+  size_t candidates = 0, four_sided = 0, mapped = 0, unmatched = 0, refused = 0, recounted = 0;
+};
+
+MappedCounts mapped_counts(const ModelPlan& plan, const std::vector<FaceMeshRun>& runs) {
+  MappedCounts c;
+  c.four_sided = plan.mapping.four_sided;
+  c.recounted = plan.mapping.recounted.size();
+  for (size_t i = 0; i < runs.size(); ++i) {
+    if (!plan.mapping.faces.count(i)) c.unmatched += plan.mapping.refused.count(i);
+    else if (runs[i].type == "transfinite") ++c.mapped;
+    else ++c.refused;
+  }
+  c.candidates = c.mapped + c.refused + c.unmatched;
+  return c;
+}
+
 // The per-face table, the model line and the failures on stderr. Returns the worst face's exit code.
-int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, const std::vector<FaceMeshRun>& runs,
+int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs,
                   const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, const MeshModelTimes& t,
                   size_t n_threads) {
   std::printf("%-6s %-10s %8s %9s %8s %8s %9s %8s  %s\n", "face", "surface", "elements", "lambda", "min", "<0.6", "score",
@@ -823,6 +887,12 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
     std::printf("quads: %lld written, %.1f%% of the area; scaled Jacobian min %.4f, mean %.4f (the triangles above are the quads' halves)\n",
                 static_cast<long long>(qs.quads), 100 * qs.area_fraction, qs.scaled_jacobian_min, qs.scaled_jacobian_mean);
   }
+  if (!plan.mapping.faces.empty() || plan.mapping.four_sided) {
+    const MappedCounts m = mapped_counts(plan, runs);
+    std::printf("mapped: %zu of %zu faces (%zu four-sided) meshed transfinite; %zu left free, their node counts not matched "
+                "with the others; %zu meshed free at the library's or the quad floor's say; %zu edges recounted to match\n",
+                m.mapped, m.candidates, m.four_sided, m.unmatched, m.refused, m.recounted);
+  }
   for (const FaceMeshRun& r : runs)
     if (!r.mapped_refused.empty() && q.transfinite.count(r.face->index))
       std::fprintf(stderr, "wefm: %s face %d (%s): meshed free, not transfinite: %s\n", q.model_path.c_str(), r.face->index,
@@ -847,6 +917,14 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
   return exit_code;
 }
 
+// Why a face meant to be mapped (four-sided or named) was meshed free: its counts not matched when
+// planned, or the library's or the quad floor's say when meshed; null for the others.
+Json mapped_refused(const ModelPlan& plan, const std::vector<FaceMeshRun>& runs, const FaceMeshRun& r) {
+  if (!r.mapped_refused.empty()) return r.mapped_refused;
+  const auto it = plan.mapping.refused.find(static_cast<size_t>(&r - runs.data()));
+  return it != plan.mapping.refused.end() && r.type != "transfinite" ? Json(it->second) : Json(nullptr);
+}
+
 Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs,
                  const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, int64_t collapsed,
                  const MeshModelTimes& t, size_t n_threads, double size) {
@@ -865,6 +943,9 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
     rep["quads"] = {{"quads", qs.quads}, {"area_fraction", qs.area_fraction}, {"scaled_jacobian_min", qs.scaled_jacobian_min},
                     {"scaled_jacobian_mean", qs.scaled_jacobian_mean}};
   }
+  const MappedCounts m = mapped_counts(plan, runs);
+  rep["mapped"] = {{"candidates", m.candidates}, {"four_sided", m.four_sided}, {"mapped", m.mapped}, {"not_matched", m.unmatched}, {"meshed_free", m.refused},
+                   {"recounted_edges", m.recounted}, {"tubes", plan.tubes.size()}};
   rep["bbox_diagonal"] = model.bbox_diagonal;
   rep["conformity"] = {{"edges", conf.edges}, {"open_edges", conf.open_edges}, {"non_manifold_edges", conf.non_manifold_edges},
                        {"brep_edge_segments", conf.brep_edge_segments},
@@ -882,7 +963,7 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
     faces.push_back({{"face", r.face->index}, {"surface_type", r.face->surface_type}, {"status", r.status},
                      {"reason", r.reason}, {"elements", fq.triangles},
                      {"type", r.type},
-                     {"mapped_refused", r.mapped_refused.empty() ? Json(nullptr) : Json(r.mapped_refused)},
+                     {"mapped_refused", mapped_refused(plan, runs, r)},
                      {"size", plan.face_sizes[static_cast<size_t>(&r - runs.data())]},
                      {"width", std::isfinite(wefm_cad::face_width(*r.face)) ? Json(wefm_cad::face_width(*r.face)) : Json(nullptr)},
                      {"lambda_mesh", fq.triangles ? Json(fq.lambda_mesh) : Json(nullptr)},
@@ -953,7 +1034,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   t.write = since(t0);
   t.total = since(t_start);
 
-  int exit_code = std::max(write_code, print_results(q, model, runs, whole, conf, quality, t, n_threads));
+  int exit_code = std::max(write_code, print_results(q, model, plan, runs, whole, conf, quality, t, n_threads));
   if (!q.report_path.empty()) {
     const Json rep = report_json(q, model, plan, runs, whole, conf, quality, collapsed, t, n_threads, size);
     if (const int code = write_file_atomically(q.report_path, rep.dump(1) + '\n', error)) {

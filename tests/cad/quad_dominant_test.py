@@ -16,6 +16,9 @@ merged with their neighbours), from the MSH itself:
 - all quads: the same, with no triangle at all, and the mapped tube's grid halved both ways (four
   times its quads); the B-rep's edges carry their segments' middles, which the conformity check
   expects (0 unexplained edges);
+- mapped faces found automatically (issue 32 item 2): the plate's four-sided faces are meshed
+  transfinite on the model's shared nodes, their elements all quads and the model still closed;
+  with `--mapped named` only the tube is mapped (its strip is not four-sided's doing);
 - a bad value refused with exit 2 and a reason, no file written.
 
 usage: quad_dominant_test.py WEFM PIN_PLATE.brep BOX.brep
@@ -57,8 +60,8 @@ def area(p):
     return a + (0.5 * norm(cross(sub(p[2], p[0]), sub(p[3], p[0]))) if len(p) == 4 else 0)
 
 
-def check(wefm, model, tmp, name, kind="quad-dominant"):
-    report, msh, _ = mesh_model(wefm, model, tmp, name + "." + kind, "--elements", kind)
+def check(wefm, model, tmp, name, kind="quad-dominant", *extra):
+    report, msh, _ = mesh_model(wefm, model, tmp, name + "." + kind + "".join(extra), "--elements", kind, *extra)
     faces, points = read_msh_faces(msh, types=(2, 3))
     elements = [e for es in faces.values() for e in es]
     assert all(len(e) in (3, 4) for e in elements)
@@ -88,14 +91,29 @@ def main():
         tube = next(f for f in r["faces"] if f["surface_type"] == "cylinder")
         assert tube["type"] == "transfinite", tube
         assert all(len(e) == 4 for e in faces[tube["face"]]), "the mapped tube's quads were split"
+        m = r["mapped"]
+        mapped = [f for f in r["faces"] if f["type"] == "transfinite" and f["surface_type"] == "plane"]
+        print(f"pin_plate: mapped {m}")
+        assert m["tubes"] == 1 and m["four_sided"] >= 3 and m["mapped"] == len(mapped) >= 3, (m, len(mapped))
+        assert m["mapped"] + m["not_matched"] + m["meshed_free"] == m["candidates"], m
+        for f in mapped:
+            assert all(len(e) == 4 for e in faces[f["face"]]), f"mapped face {f['face']} has triangles"
+            assert f["mapped_refused"] is None, f
+        for f in r["faces"]:
+            if f["type"] == "free" and f["mapped_refused"] is not None:
+                assert f["mapped_refused"], f
+        rn, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad-dominant", "--mapped", "named")
+        assert rn["mapped"]["mapped"] == 0 and rn["mapped"]["candidates"] == 0, rn["mapped"]
+        assert [f["face"] for f in rn["faces"] if f["type"] == "transfinite"] == [tube["face"]]
+        assert r["quads"]["scaled_jacobian_mean"] > rn["quads"]["scaled_jacobian_mean"], (r["quads"], rn["quads"])
         r4, faces4 = check(wefm, pin_plate, tmp, "pin_plate", "quad")
         tube4 = next(f for f in r4["faces"] if f["face"] == tube["face"])
         assert tube4["type"] == "transfinite", tube4
         assert len(faces4[tube["face"]]) == 4 * len(faces[tube["face"]]), (len(faces4[tube["face"]]), len(faces[tube["face"]]))
         check(wefm, box, tmp, "box")
         check(wefm, box, tmp, "box", "quad")
-        for bad, why in (("hexes", "expected tri, quad-dominant or quad"),):
-            p = subprocess.run([wefm, "mesh-model", box, "--size-ratio", "0.025", "-o", os.path.join(tmp, "x.msh"), "--elements", bad],
+        for opt, bad, why in (("--elements", "hexes", "expected tri, quad-dominant or quad"), ("--mapped", "all", "expected auto or named")):
+            p = subprocess.run([wefm, "mesh-model", box, "--size-ratio", "0.025", "-o", os.path.join(tmp, "x.msh"), opt, bad],
                                capture_output=True, text=True, timeout=120)
             assert p.returncode == 2 and why in p.stderr, (bad, p.returncode, p.stderr)
             assert not os.path.exists(os.path.join(tmp, "x.msh")), "a refused run wrote a mesh"
