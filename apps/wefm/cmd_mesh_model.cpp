@@ -162,12 +162,40 @@ wefm_status fetch(std::vector<T>& out, G get) {
 // where its grid's worst quad has a scaled Jacobian below this: issue 32's floor for quads.
 constexpr double kMappedQuadFloor = 0.3;
 
+// How a face is to be meshed mapped: the transfinite options, the floor of its grid's worst quad (0:
+// any grid), and its corners as vertices of the face (-1: the library picks the domain's sharpest
+// four).
+struct MappedRequest {
+  wefm_mesh_options options{};
+  double floor = 0;
+  std::array<int32_t, 4> corner_vertices{-1, -1, -1, -1};
+};
+
+// The outer loop's uses of the corner vertices, in loop order, into options.corners, where there are
+// exactly four (a corner vertex used twice by the loop, on a seam, is a corner both times on a
+// cylinder between two circles); else the library detects them.
+void set_corner_uses(wefm_face* face, const std::array<int32_t, 4>& corner_vertices, wefm_mesh_options& options) {
+  if (corner_vertices[0] < 0) return;
+  int32_t loop = 0;
+  std::vector<int32_t> uses, vertex_of;
+  if (wefm_face_outer_loop(face, &loop) != WEFM_OK ||
+      fetch(uses, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_face_get_loop_uses(face, loop, b, c, n); }) != WEFM_OK ||
+      fetch(vertex_of, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_face_get_use_vertices(face, b, c, n); }) != WEFM_OK)
+    return;
+  std::vector<int32_t> found;
+  for (int32_t u : uses)
+    if (u >= 0 && static_cast<size_t>(u) < vertex_of.size() &&
+        std::find(corner_vertices.begin(), corner_vertices.end(), vertex_of[static_cast<size_t>(u)]) != corner_vertices.end())
+      found.push_back(u);
+  if (found.size() == 4) std::copy(found.begin(), found.end(), options.corners);
+}
+
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,
 // so a conformal domain that is unusable is meshed anyway (and fails or not as the mesher says).
-// `mapped_floor`: a transfinite mesh whose worst quad is below it is replaced by a free one.
+// `mapped` (or null): tried first, free where the library refuses it or its grid is below its floor.
 void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, const wefm_mesh_options& mesh_options,
-                      const wefm_mesh_options* mapped, double mapped_floor,
-                      const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, CancelWatcher& watcher) {
+                      const MappedRequest* mapped, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
+                      CancelWatcher& watcher) {
   auto fail = [&](int code, const std::string& why) {
     r.exit_code = code;
     r.status = "failed";
@@ -221,16 +249,18 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
     bool free_mesh = !mapped;
     if (mapped) {
       r.type = "transfinite";
-      st = wefm_face_mesh_domain(raw, mapped, &dm_raw);
+      wefm_mesh_options map_options = mapped->options;
+      set_corner_uses(raw, mapped->corner_vertices, map_options);
+      st = wefm_face_mesh_domain(raw, &map_options, &dm_raw);
       free_mesh = st == WEFM_ERROR_UNSUPPORTED;
       if (free_mesh) r.mapped_refused = wefm_face_last_error(raw);
       wefm_mesh_report grid;
       wefm_mesh_report_init(&grid, sizeof grid);
-      if (st == WEFM_OK && mapped_floor > 0 && wefm_domain_mesh_get_report(dm_raw, &grid) == WEFM_OK && grid.quads > 0 &&
-          grid.scaled_jacobian_min < mapped_floor) {
+      if (st == WEFM_OK && mapped->floor > 0 && wefm_domain_mesh_get_report(dm_raw, &grid) == WEFM_OK && grid.quads > 0 &&
+          grid.scaled_jacobian_min < mapped->floor) {
         char text[128];
         std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below %g", grid.scaled_jacobian_min,
-                      mapped_floor);
+                      mapped->floor);
         r.mapped_refused = text;
         wefm_domain_mesh_release(dm_raw);
         dm_raw = nullptr;
@@ -287,23 +317,22 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
 }
 
 // `mapped` (or null): transfinite options tried first; where the library refuses them (not four
-// sides with matching node counts), or their grid is below `mapped_floor` (0: any grid), the face is
-// meshed with `mesh_options` on the same domain.
+// sides with matching node counts), or their grid is below its floor, the face is meshed with
+// `mesh_options` on the same domain.
 // `conformal_first`: kConformalS is tried before the settings' s (conformal_first.hpp).
 void mesh_one_face(FaceMeshRun& r, const FlattenSettings& settings, bool conformal_first, const wefm_mesh_options& mesh_options,
-                   const wefm_mesh_options* mapped, double mapped_floor, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes,
-                   CancelWatcher& watcher) {
+                   const MappedRequest* mapped, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes, CancelWatcher& watcher) {
   if (conformal_first && settings.options.s != kConformalS) {
     wefm_options conformal = settings.options;
     conformal.s = kConformalS;
-    flatten_and_mesh(r, conformal, false, mesh_options, mapped, mapped_floor, edge_nodes, watcher);
+    flatten_and_mesh(r, conformal, false, mesh_options, mapped, edge_nodes, watcher);
     if (r.status != "failed" || r.exit_code == stop_exit_code() || r.exit_code == kExitInvalid || r.exit_code == kExitUsage) return;
     const double time_solve = r.time_solve, time_mesh = r.time_mesh;
     const std::string why = r.reason;
     reset_run(r, r.edge_refinements);
     r.time_solve = time_solve, r.time_mesh = time_mesh, r.conformal_refused = why;
   }
-  flatten_and_mesh(r, settings.options, true, mesh_options, mapped, mapped_floor, edge_nodes, watcher);
+  flatten_and_mesh(r, settings.options, true, mesh_options, mapped, edge_nodes, watcher);
 }
 
 // About how many triangles the faces need at their sizes: each face's area over an equilateral
@@ -663,6 +692,7 @@ struct ModelPlan {
   std::map<long long, wefm_cad::EdgeNodes> edge_nodes;
   std::set<size_t> tubes;   // thin tubes meshed as mapped strips (map_thin_tubes)
   MappedFaces mapping;      // named and four-sided faces meshed mapped (map_four_sided_faces)
+  std::vector<size_t> source;  // per face, the earlier face it lies on + 1, or 0 (coincident_faces)
   double time = 0;
 };
 
@@ -673,9 +703,14 @@ void discretise_and_map(const MeshModelRequest& q, const wefm_cad::CadModel& mod
   plan.tubes.clear();
   if (q.mapped_tubes && q.local_size) plan.tubes = map_thin_tubes(model, size, plan.face_sizes, plan.edge_nodes);
   std::vector<size_t> named;
-  for (size_t i = 0; i < model.faces.size(); ++i)
+  std::set<long long> unsettled;  // coincident_nodes changes them
+  for (size_t i = 0; i < model.faces.size(); ++i) {
     if (q.transfinite.count(model.faces[i].index) && !plan.tubes.count(i)) named.push_back(i);
-  plan.mapping = map_four_sided_faces(model, named, q.mapped_auto, plan.tubes, plan.edge_nodes);
+    if (plan.source[i])
+      for (const wefm_cad::CadFace* f : {&model.faces[i], &model.faces[plan.source[i] - 1]})
+        for (const wefm_cad::CadEdge& e : f->edges) unsettled.insert(e.id);
+  }
+  plan.mapping = map_four_sided_faces(model, named, q.mapped_auto, plan.tubes, unsettled, plan.edge_nodes);
 }
 
 // A face whose domain boundary, discretised at its edges' nodes, crosses itself (chords of a coarse
@@ -744,6 +779,7 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
                  q.model_path.c_str(), size, estimate, estimate_mb, q.max_elements, memory_limit);
     return kExitSolver;
   }
+  plan.source = coincident_faces(model);
   discretise_and_map(q, model, size, plan);
   plan.time = since(t0);
   return -1;
@@ -770,10 +806,13 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
       const size_t i = todo[k];
       const bool named = q.transfinite.count(runs[i].face->index) > 0;
       const bool map = named || plan.tubes.count(i) || plan.mapping.faces.count(i);
-      const double quad_floor = map && !named && !plan.tubes.count(i) ? kMappedQuadFloor : 0;
-      wefm_mesh_options options = free_options, map_options = tf_options;
-      options.size = map_options.size = plan.face_sizes[i];
-      mesh_one_face(runs[i], q.settings, q.conformal_first, options, map ? &map_options : nullptr, quad_floor, plan.edge_nodes, watcher);
+      wefm_mesh_options options = free_options;
+      MappedRequest mapped;
+      mapped.options = tf_options;
+      options.size = mapped.options.size = plan.face_sizes[i];
+      mapped.floor = map && !named && !plan.tubes.count(i) ? kMappedQuadFloor : 0;
+      if (const auto c = plan.mapping.sides.find(i); c != plan.mapping.sides.end()) mapped.corner_vertices = c->second.corners;
+      mesh_one_face(runs[i], q.settings, q.conformal_first, options, map ? &mapped : nullptr, plan.edge_nodes, watcher);
       return true;
     };
     auto finished = [&](size_t k, size_t done) {
@@ -784,7 +823,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
     };
     for_each_face(todo.size(), n_threads, work, finished);
   };
-  const std::vector<size_t> source = coincident_faces(model);
+  const std::vector<size_t>& source = plan.source;
   auto mesh_or_copy = [&](const std::vector<size_t>& todo) {
     const std::set<size_t> asked(todo.begin(), todo.end());
     std::vector<size_t> own, alone;
@@ -840,11 +879,12 @@ struct MeshModelTimes {
   double total = 0, edges = 0, faces = 0, weld = 0, check = 0, write = 0;
 };
 
-// The faces meant to be mapped (four-sided or named): how many, meshed transfinite, left free because
-// their counts could not be matched, meshed free at the library's say (not four corners in the
-// domain, counts unlike) or below the quad floor; the edges recounted to match.
+// The faces meant to be mapped (four-sided or named): how many, meshed transfinite, left free when
+// planned (counts not matched, or edges that follow a face lying on another), meshed free at the
+// library's say (not four corners in the domain, counts unlike) or below the quad floor; the edges
+// recounted to match; the mapped faces whose opposite sides' counts differ in the end.
 struct MappedCounts {
-  size_t candidates = 0, four_sided = 0, mapped = 0, unmatched = 0, refused = 0, recounted = 0;
+  size_t candidates = 0, four_sided = 0, mapped = 0, planned_free = 0, meshed_free = 0, recounted = 0, mismatched = 0;
 };
 
 MappedCounts mapped_counts(const ModelPlan& plan, const std::vector<FaceMeshRun>& runs) {
@@ -852,11 +892,12 @@ MappedCounts mapped_counts(const ModelPlan& plan, const std::vector<FaceMeshRun>
   c.four_sided = plan.mapping.four_sided;
   c.recounted = plan.mapping.recounted.size();
   for (size_t i = 0; i < runs.size(); ++i) {
-    if (!plan.mapping.faces.count(i)) c.unmatched += plan.mapping.refused.count(i);
+    if (!plan.mapping.faces.count(i)) c.planned_free += plan.mapping.refused.count(i);
     else if (runs[i].type == "transfinite") ++c.mapped;
-    else ++c.refused;
+    else ++c.meshed_free;
   }
-  c.candidates = c.mapped + c.refused + c.unmatched;
+  c.candidates = c.mapped + c.meshed_free + c.planned_free;
+  c.mismatched = mismatched_faces(plan.mapping, plan.edge_nodes);
   return c;
 }
 
@@ -889,9 +930,10 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
   }
   if (!plan.mapping.faces.empty() || plan.mapping.four_sided) {
     const MappedCounts m = mapped_counts(plan, runs);
-    std::printf("mapped: %zu of %zu faces (%zu four-sided) meshed transfinite; %zu left free, their node counts not matched "
-                "with the others; %zu meshed free at the library's or the quad floor's say; %zu edges recounted to match\n",
-                m.mapped, m.candidates, m.four_sided, m.unmatched, m.refused, m.recounted);
+    std::printf("mapped: %zu of %zu faces (%zu four-sided) meshed transfinite; %zu planned free (node counts not matched, or "
+                "nodes that follow a face lying on another); %zu meshed free at the library's or the quad floor's say; %zu edges "
+                "recounted to match; %zu mapped faces with unlike opposite counts\n",
+                m.mapped, m.candidates, m.four_sided, m.planned_free, m.meshed_free, m.recounted, m.mismatched);
   }
   for (const FaceMeshRun& r : runs)
     if (!r.mapped_refused.empty() && q.transfinite.count(r.face->index))
@@ -944,8 +986,8 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
                     {"scaled_jacobian_mean", qs.scaled_jacobian_mean}};
   }
   const MappedCounts m = mapped_counts(plan, runs);
-  rep["mapped"] = {{"candidates", m.candidates}, {"four_sided", m.four_sided}, {"mapped", m.mapped}, {"not_matched", m.unmatched}, {"meshed_free", m.refused},
-                   {"recounted_edges", m.recounted}, {"tubes", plan.tubes.size()}};
+  rep["mapped"] = {{"candidates", m.candidates}, {"four_sided", m.four_sided}, {"mapped", m.mapped}, {"planned_free", m.planned_free}, {"meshed_free", m.meshed_free},
+                   {"recounted_edges", m.recounted}, {"mismatched", m.mismatched}, {"tubes", plan.tubes.size()}};
   rep["bbox_diagonal"] = model.bbox_diagonal;
   rep["conformity"] = {{"edges", conf.edges}, {"open_edges", conf.open_edges}, {"non_manifold_edges", conf.non_manifold_edges},
                        {"brep_edge_segments", conf.brep_edge_segments},

@@ -32,6 +32,7 @@ bool four_sides(const wefm_cad::CadFace& f, FourSides& sides, std::string& why) 
   }
   if (at.size() != 4) return why = std::to_string(at.size()) + " corners", false;
   for (size_t s = 0; s < 4; ++s) {
+    sides.corners[s] = corners[at[s]].vertex;
     sides.edges[s].clear();
     sides.length[s] = 0;
     for (size_t k = (at[s] + 1) % loop.size();; k = (k + 1) % loop.size()) {
@@ -153,7 +154,8 @@ class CountMatcher {
 }  // namespace
 
 MappedFaces map_four_sided_faces(const wefm_cad::CadModel& model, const std::vector<size_t>& named, bool automatic,
-                                 const std::set<size_t>& fixed, std::map<long long, wefm_cad::EdgeNodes>& edge_nodes) {
+                                 const std::set<size_t>& fixed, const std::set<long long>& unsettled,
+                                 std::map<long long, wefm_cad::EdgeNodes>& edge_nodes) {
   MappedFaces out;
   CountMatcher matcher(model, edge_nodes);
   for (size_t i : fixed)
@@ -178,8 +180,13 @@ MappedFaces map_four_sided_faces(const wefm_cad::CadModel& model, const std::vec
       continue;
     }
     ++out.four_sided;
+    if (!is_named.count(i) &&
+        std::any_of(model.faces[i].edges.begin(), model.faces[i].edges.end(), [&](const wefm_cad::CadEdge& e) { return unsettled.count(e.id) > 0; })) {
+      out.refused[i] = "an edge's nodes follow a face lying on another";
+      continue;
+    }
     const bool matched = matcher.take(sides, why);
-    if (matched || is_named.count(i)) out.faces.insert(i);
+    if (matched || is_named.count(i)) out.faces.insert(i), out.sides[i] = sides;
     if (!matched) out.refused[i] = "not matched with the faces mapped before: " + why;
   }
   // Edges whose count changed, re-discretised from the first face that has them (as
@@ -193,6 +200,19 @@ MappedFaces map_four_sided_faces(const wefm_cad::CadModel& model, const std::vec
       nodes = wefm_cad::recount_edge_nodes(f, e, nodes, it->second);
       out.recounted.insert(e.id);
     }
+  return out;
+}
+
+size_t mismatched_faces(const MappedFaces& m, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes) {
+  auto segments = [&](const std::vector<long long>& side) {
+    size_t n = 0;
+    for (long long id : side)
+      if (const auto it = edge_nodes.find(id); it != edge_nodes.end()) n += it->second.xyz.size() / 3 - 1;
+    return n;
+  };
+  size_t out = 0;
+  for (const auto& [i, s] : m.sides)
+    out += segments(s.edges[0]) != segments(s.edges[2]) || segments(s.edges[1]) != segments(s.edges[3]);
   return out;
 }
 

@@ -6,6 +6,7 @@
 // sides to have as many segments, and since every model edge is discretised once for all the faces
 // that use it, one face's sides tie its edges' counts to those of every other mapped face.
 #include <array>
+#include <cstdint>
 #include <map>
 #include <set>
 #include <string>
@@ -31,6 +32,7 @@ constexpr double kSideRatio = 3;
 struct FourSides {
   std::array<std::vector<long long>, 4> edges;  // model edge ids of each side (a seam is on two sides)
   std::array<double, 4> length{};               // each side's 3D length
+  std::array<int32_t, 4> corners{};             // the corners' vertices in the face's xyz, in loop order
 };
 
 // True with `sides` when the face has one loop, no degenerate edge (a pole), four corners between
@@ -41,6 +43,7 @@ bool four_sides(const wefm_cad::CadFace& f, FourSides& sides, std::string& why);
 // What map_four_sided_faces did.
 struct MappedFaces {
   std::set<size_t> faces;                 // CadModel::faces indices to mesh mapped
+  std::map<size_t, FourSides> sides;      // of the four-sided ones among them
   size_t four_sided = 0;                  // faces found four-sided (named ones included)
   std::map<size_t, std::string> refused;  // four-sided or named, not mapped: why
   std::set<long long> recounted;          // model edges given another segment count
@@ -50,13 +53,20 @@ struct MappedFaces {
 // its count (plus one) to match, no further.
 constexpr double kMostGrowth = 2;
 
+// The mapped four-sided faces whose opposite sides do not have as many segments in `edge_nodes`
+// (none right after map_four_sided_faces; nodes added to edges later can make some).
+size_t mismatched_faces(const MappedFaces& m, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes);
+
 // Picks the faces to mesh mapped, `named` ones first (CadModel::faces indices; any face the caller
 // named, four-sided or not), then with `automatic` every other four-sided face, largest first, and
 // matches the segment counts of their opposite sides across the model: each face is taken if the
 // counts of the faces taken so far, and its own, can be matched by adding segments to edges
 // (kMostGrowth), else left free. The edges of `fixed` faces (mapped tubes, already matched) keep
-// their counts. Edges given another count are re-discretised in `edge_nodes`, graded as before.
+// their counts. A face with an edge in `unsettled` (one whose nodes change after planning: those of
+// faces lying on each other, which take each other's nodes) is not mapped automatically. Edges
+// given another count are re-discretised in `edge_nodes`, graded as before.
 MappedFaces map_four_sided_faces(const wefm_cad::CadModel& model, const std::vector<size_t>& named, bool automatic,
-                                 const std::set<size_t>& fixed, std::map<long long, wefm_cad::EdgeNodes>& edge_nodes);
+                                 const std::set<size_t>& fixed, const std::set<long long>& unsettled,
+                                 std::map<long long, wefm_cad::EdgeNodes>& edge_nodes);
 
 }  // namespace wefm_cli

@@ -95,7 +95,7 @@ def main():
         mapped = [f for f in r["faces"] if f["type"] == "transfinite" and f["surface_type"] == "plane"]
         print(f"pin_plate: mapped {m}")
         assert m["tubes"] == 1 and m["four_sided"] >= 3 and m["mapped"] == len(mapped) >= 3, (m, len(mapped))
-        assert m["mapped"] + m["not_matched"] + m["meshed_free"] == m["candidates"], m
+        assert m["mapped"] + m["planned_free"] + m["meshed_free"] == m["candidates"] and m["mismatched"] == 0, m
         for f in mapped:
             assert all(len(e) == 4 for e in faces[f["face"]]), f"mapped face {f['face']} has triangles"
             assert f["mapped_refused"] is None, f

@@ -104,7 +104,7 @@ TEST_CASE("a trapezoid's short side gets as many segments as the long one, the o
   auto nodes = wefm_cad::discretise_model_edges(model, 1.0);
   REQUIRE(segments(nodes, 1) == 3);
   REQUIRE(segments(nodes, 3) == 2);
-  const auto m = wefm_cli::map_four_sided_faces(model, {}, true, {}, nodes);
+  const auto m = wefm_cli::map_four_sided_faces(model, {}, true, {}, {}, nodes);
   CHECK(m.faces.count(0) == 1);
   CHECK(m.four_sided == 1);
   CHECK(segments(nodes, 3) == 3);
@@ -113,7 +113,7 @@ TEST_CASE("a trapezoid's short side gets as many segments as the long one, the o
   CHECK(m.recounted == std::set<long long>{3});
   // Not asked for: nothing mapped, nothing recounted.
   auto same = wefm_cad::discretise_model_edges(model, 1.0);
-  const auto none = wefm_cli::map_four_sided_faces(model, {}, false, {}, same);
+  const auto none = wefm_cli::map_four_sided_faces(model, {}, false, {}, {}, same);
   CHECK(none.faces.empty());
   CHECK(segments(same, 3) == 2);
 }
@@ -125,13 +125,18 @@ TEST_CASE("counts are matched across faces: an edge one face makes finer makes i
                                    polygon_face(2, {{0.5, 1}, {2.5, 1}, {2.5, 2}, {0.5, 2}}, {-3, 6, 7, 8})});
   auto nodes = wefm_cad::discretise_model_edges(model, 1.0);
   REQUIRE(segments(nodes, 7) == 2);
-  const auto m = wefm_cli::map_four_sided_faces(model, {}, true, {}, nodes);
+  const auto m = wefm_cli::map_four_sided_faces(model, {}, true, {}, {}, nodes);
   CHECK(m.faces.size() == 2);
   CHECK(segments(nodes, 1) == segments(nodes, 3));
   CHECK(segments(nodes, 3) == segments(nodes, 7));
   CHECK(segments(nodes, 2) == segments(nodes, 4));
   CHECK(segments(nodes, 6) == segments(nodes, 8));
   CHECK(segments(nodes, 7) == 3);
+  CHECK(wefm_cli::mismatched_faces(m, nodes) == 0);
+  // A node added to an edge afterwards (a neighbour's kink) unmatches the faces on it.
+  auto& top = nodes.at(7).xyz;
+  top.insert(top.end() - 3, {1.0, 2.0, 0.0});
+  CHECK(wefm_cli::mismatched_faces(m, nodes) == 1);
 }
 
 TEST_CASE("a face whose counts cannot be matched within the growth stays free; faces fixed before keep their edges") {
@@ -140,7 +145,7 @@ TEST_CASE("a face whose counts cannot be matched within the growth stays free; f
   auto nodes = wefm_cad::discretise_model_edges(model, 1.0);
   REQUIRE(segments(nodes, 1) == 3);
   REQUIRE(segments(nodes, 3) == 1);
-  const auto m = wefm_cli::map_four_sided_faces(model, {}, true, {}, nodes);
+  const auto m = wefm_cli::map_four_sided_faces(model, {}, true, {}, {}, nodes);
   CHECK(m.faces.empty());
   CHECK(m.four_sided == 1);
   CHECK(m.refused.count(0) == 1);
@@ -149,7 +154,7 @@ TEST_CASE("a face whose counts cannot be matched within the growth stays free; f
   // The trapezoid with its edges fixed (a mapped tube's, say): not mapped, its top left at two.
   const CadModel trap = model_of({polygon_face(1, kTrapezoid, {1, 2, 3, 4}), polygon_face(2, kTrapezoid, {11, 12, 13, 14})});
   auto tn = wefm_cad::discretise_model_edges(trap, 1.0);
-  const auto fixed = wefm_cli::map_four_sided_faces(trap, {}, true, {0}, tn);
+  const auto fixed = wefm_cli::map_four_sided_faces(trap, {}, true, {0}, {}, tn);
   CHECK(fixed.faces == std::set<size_t>{1});
   CHECK(segments(tn, 3) == 2);
   CHECK(segments(tn, 13) == 3);
@@ -160,7 +165,7 @@ TEST_CASE("a face named by the caller is meshed mapped even when it is not four-
   for (int k = 0; k < 5; ++k) penta.push_back({std::cos(2 * 3.14159265358979 * k / 5), std::sin(2 * 3.14159265358979 * k / 5)});
   const CadModel model = model_of({polygon_face(1, penta, {1, 2, 3, 4, 5})});
   auto nodes = wefm_cad::discretise_model_edges(model, 0.5);
-  const auto m = wefm_cli::map_four_sided_faces(model, {0}, false, {}, nodes);
+  const auto m = wefm_cli::map_four_sided_faces(model, {0}, false, {}, {}, nodes);
   CHECK(m.faces.count(0) == 1);
   CHECK(m.refused.at(0).find("not four-sided") == 0);
 }
