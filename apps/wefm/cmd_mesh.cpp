@@ -29,7 +29,9 @@ std::vector<OptionSpec> mesh_specs() {
   std::vector<OptionSpec> specs = {
       {"output", 'o', "MESH.obj", "3D mesh to write, format by extension (.obj: v, vt, f triangles or quads; .msh, .vtk, .vtu, .ply) (required)", "", false},
       {"size", 0, "H", "target 3D element size (required)", "", false},
-      {"type", 0, "free|transfinite", "free triangles, or a transfinite (mapped) mesh on four corners", "free", false},
+      {"type", 0, "free|transfinite|auto", "free triangles, a transfinite (mapped) mesh on four corners, or transfinite where "
+                                           "the domain is four-sided (four corners of 30 to 150 degrees, other turns under 20) "
+                                           "and its grid's worst quad has a scaled Jacobian of 0.3 or more, else free", "free", false},
       {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
        false},
       {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
@@ -52,11 +54,12 @@ std::vector<OptionSpec> mesh_specs() {
 
 void print_help() {
   std::printf(
-      "Usage: wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite] [options]\n\n"
+      "Usage: wefm mesh INPUT --size H -o MESH.obj [--type free|transfinite|auto] [options]\n\n"
       "Flattens one face (as wefm flatten, with the same options), meshes the 2D domain at the 3D size H\n"
       "and maps the mesh back to 3D. Free meshes are triangles (frontal-Delaunay placement sized in 3D +\n"
       "smoothing and optimisation judged in 3D), quad-dominant or all quads with --elements; transfinite\n"
-      "meshes are quads on four corners (a periodic strip counts).\n\n%s\n"
+      "meshes are quads on four corners (a periodic strip counts); auto chooses transfinite for a four-sided\n"
+      "domain.\n\n%s\n"
       "Options:\n%s\n%s",
       mesh_formats_help(), format_options(mesh_specs()).c_str(), exit_codes_help());
 }
@@ -325,7 +328,8 @@ bool parse_mesh_options(const ParsedArgs& args, wefm_mesh_options& o, std::strin
     const std::string& t = args.value("type");
     if (t == "free") o.type = WEFM_MESH_FREE;
     else if (t == "transfinite") o.type = WEFM_MESH_TRANSFINITE;
-    else return error = "--type: expected free or transfinite, got '" + t + "'", false;
+    else if (t == "auto") o.type = WEFM_MESH_AUTO;
+    else return error = "--type: expected free, transfinite or auto, got '" + t + "'", false;
   }
   if (args.has("elements")) {
     const std::string& t = args.value("elements");
@@ -412,7 +416,8 @@ nlohmann::json report_json(const MeshRequest& q, const MeshRun& run, double t_me
   const wefm_mesh_report& r = run.report;
   nlohmann::json j;
   j["input"] = q.input;
-  j["type"] = q.mesh.type == WEFM_MESH_TRANSFINITE ? "transfinite" : "free";
+  j["type"] = r.transfinite ? "transfinite" : "free";
+  j["type_asked"] = q.mesh.type == WEFM_MESH_TRANSFINITE ? "transfinite" : q.mesh.type == WEFM_MESH_AUTO ? "auto" : "free";
   j["size"] = q.mesh.size;
   j["flatten"] = {{"s", q.settings.options.s}, {"boundary_weight", q.settings.options.boundary_weight},
                   {"score", run.flatten_report.score}, {"converged", run.flatten_report.converged != 0}, {"time", run.time_solve}};
@@ -436,7 +441,8 @@ void print_summary(const MeshRequest& q, const wefm_mesh_report& r) {
   if (mixed)
     std::printf("; %lld quads, %.1f%% of the area", static_cast<long long>(r.quads), 100 * r.quad_area_fraction);
   if (r.quads > 0) std::printf("; scaled Jacobian min %.4f mean %.4f", r.scaled_jacobian_min, r.scaled_jacobian_mean);
-  if (q.mesh.type == WEFM_MESH_TRANSFINITE) std::printf("; wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
+  if (r.transfinite) std::printf("; transfinite, wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
+  else if (q.mesh.type == WEFM_MESH_AUTO) std::printf("; free (not four-sided, or its grid below 0.3)");
   std::printf("\n");
 }
 

@@ -145,6 +145,7 @@ WEFM_API wefm_status wefm_domain_mesh_get_report(const wefm_domain_mesh* mesh, w
     r.time_map = s.time_map;
     r.quads = s.quads;
     r.quad_area_fraction = s.quad_area_fraction;
+    r.transfinite = s.transfinite ? 1 : 0;
     wefm::capi::write_versioned(report, r);
   });
 }

@@ -562,11 +562,17 @@ def case_mesh(tmp):
     check("wiggle" in p.stdout and "quads" in p.stdout, f"summary: {p.stdout}")
     DV, DF = read_faces(os.path.join(tmp, "cyl_mesh.domain.obj"))
     check(len(DV) == len(MV) and DF == MF and all(v[2] == 0 for v in DV), "domain mesh mismatches the 3D mesh")
+    # --type auto finds the strip four-sided (seam, end, seam, end) and makes the same grid.
+    aout, arep = os.path.join(tmp, "cyl_auto.obj"), os.path.join(tmp, "cyl_auto.json")
+    run("mesh", src, "--topology", topo, "--size", chord, "--type", "auto", "-o", aout, "--report", arep, "--s", 0, "-q", expect=0)
+    a = json.load(open(arep))
+    check(a["type"] == "transfinite" and a["type_asked"] == "auto" and read_faces(aout)[1] == MF, f"auto: {a['type']}, {a['mesh']}")
     # Free meshing of a curved patch, with the picture.
     PV, PT = meshes.patch(9, 7)
     psrc, pout, prep, psvg = (os.path.join(tmp, n) for n in ("patch.obj", "patch_mesh.obj", "patch.json", "patch.svg"))
     meshes.write_obj(psrc, PV, PT)
     run("mesh", psrc, "--size", 0.05, "-o", pout, "--report", prep, "--svg", psvg, "-q", expect=0)
+    check(json.load(open(prep))["type"] == "free", "a free mesh reported as another type")
     # Without -q the solve and the meshing both show progress on a non-terminal stderr.
     shown = run("mesh", psrc, "--size", 0.05, "-o", os.path.join(tmp, "shown.obj"), expect=0)
     stages = {l.split()[1] for l in shown.stderr.splitlines() if l.startswith("progress: ")}

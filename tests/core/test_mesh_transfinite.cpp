@@ -133,3 +133,40 @@ TEST_CASE("all-quad transfinite halves the grid both ways: the old nodes kept, t
   CHECK(fine.report.wiggle_max < coarse.report.wiggle_max + 0.01);
   CHECK(fine.report.scaled_jacobian_min > 0.5);
 }
+
+TEST_CASE("automatic meshing: a grid on a four-sided domain, a free mesh on any other, never an error for unlike sides") {
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Automatic;
+  o.size = 0.1;
+  // A square: four corners of 90 degrees.
+  const auto square = test::solved(test::unit_square(8));
+  const auto grid = square.mesh_domain(o);
+  CHECK(grid.report.transfinite);
+  CHECK(grid.nodes_per_element == 4);
+  CHECK(grid.report.elements == 100);
+  CHECK(grid.report.scaled_jacobian_min == doctest::Approx(1.0).epsilon(1e-12));
+  // A cut cone's domain (two straight sides, two arcs of small turns): four-sided too.
+  const auto cone = test::solved(test::cut_cone(24, 8));
+  CHECK(cone.mesh_domain(o).report.transfinite);
+  // Holes, or one smooth loop: free triangles, as asked for by `elements`.
+  // A disk: a grid squeezed onto it (the square's corners land on the circle, where it does not turn).
+  const TriMesh disk = test::grid(16, 16, [](double u, double v) {
+    const double x = 2 * u - 1, y = 2 * v - 1;
+    return Vec3(x * std::sqrt(1 - y * y / 2), y * std::sqrt(1 - x * x / 2), 0.0);
+  });
+  for (const TriMesh& m : {test::disk_with_holes(), disk}) {
+    const auto free = test::solved(m).mesh_domain(o);
+    CHECK_FALSE(free.report.transfinite);
+    CHECK(free.nodes_per_element == 3);
+    CHECK(free.report.lambda_min > 0.3);
+  }
+  // Caller nodes with unlike counts on opposite sides: the grid is impossible, the free mesh is not.
+  meshing::EdgeNodes given;
+  given[0] = {Vec3(0.1, 0, 0), Vec3(0.3, 0, 0), Vec3(0.7, 0, 0), Vec3(1, 0.5, 0), Vec3(0.5, 1, 0), Vec3(0.2, 1, 0), Vec3(0, 0.5, 0)};
+  const auto unlike = test::solved(test::unit_square(4)).mesh_domain(o, given);
+  CHECK_FALSE(unlike.report.transfinite);
+  CHECK(unlike.report.elements > 0);
+  // Given corners are the transfinite type's, not the automatic one's.
+  o.corners = {0, 1, 2, 3};
+  CHECK(square.mesh_domain(o).report.elements == 100);
+}

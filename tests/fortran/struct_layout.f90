@@ -123,6 +123,7 @@ program struct_layout
   call at('wefm_mesh_report time_map', c_loc(v4), c_loc(v4%time_map))
   call at('wefm_mesh_report quads', c_loc(v4), c_loc(v4%quads))
   call at('wefm_mesh_report quad_area_fraction', c_loc(v4), c_loc(v4%quad_area_fraction))
+  call at('wefm_mesh_report transfinite', c_loc(v4), c_loc(v4%transfinite))
 
 contains
 

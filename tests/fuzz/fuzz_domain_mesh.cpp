@@ -89,7 +89,8 @@ void edge_nodes(wefm_face* f, Input& in, int32_t edge, const std::vector<double>
 wefm_mesh_options mesh_options(Input& in, double span) {
   wefm_mesh_options o;
   wefm_mesh_options_init(&o);
-  o.type = in.u8() % 5 == 0 ? WEFM_MESH_TRANSFINITE : WEFM_MESH_FREE;
+  const uint8_t kind = in.u8() % 5;
+  o.type = kind == 0 ? WEFM_MESH_TRANSFINITE : kind == 1 ? WEFM_MESH_AUTO : WEFM_MESH_FREE;
   o.smoothing_iterations = 2;
   const uint8_t how = in.u8();
   if (how % 16 == 0) {

@@ -60,6 +60,7 @@ SOLVER_EIGEN = 2
 # wefm_mesh_type
 MESH_FREE = 0
 MESH_TRANSFINITE = 1
+MESH_AUTO = 2
 
 # wefm_elements
 ELEMENTS_TRIANGLES = 0
@@ -197,6 +198,7 @@ class MeshReport(ctypes.Structure):
         ("time_map", c_double),
         ("quads", c_int64),
         ("quad_area_fraction", c_double),
+        ("transfinite", c_int32),
     ]
 
 

@@ -19,7 +19,7 @@ _ENUMS = {
     "method": {"global": S.METHOD_GLOBAL, "rollout": S.METHOD_ROLLOUT},
     "solver": {"auto": S.SOLVER_AUTO, "cholmod": S.SOLVER_CHOLMOD, "eigen": S.SOLVER_EIGEN},
     "default_edge_mode": {n: i for i, n in enumerate(EDGE_MODE_NAMES)},
-    "type": {"free": S.MESH_FREE, "transfinite": S.MESH_TRANSFINITE},
+    "type": {"free": S.MESH_FREE, "transfinite": S.MESH_TRANSFINITE, "auto": S.MESH_AUTO},
     "elements": {"tri": S.ELEMENTS_TRIANGLES, "triangles": S.ELEMENTS_TRIANGLES, "quad-dominant": S.ELEMENTS_QUAD_DOMINANT,
                  "quad": S.ELEMENTS_QUADS, "quads": S.ELEMENTS_QUADS},
     "residual": {"half-edge": S.RESIDUAL_PER_HALF_EDGE, "use": S.RESIDUAL_PER_USE},

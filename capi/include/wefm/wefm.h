@@ -732,9 +732,15 @@ typedef struct wefm_domain_mesh wefm_domain_mesh;
 /** wefm_mesh_options.type. */
 typedef enum wefm_mesh_type {
   WEFM_MESH_FREE = 0,        /**< frontal-Delaunay triangles sized in 3D, then smoothing and optimisation */
-  WEFM_MESH_TRANSFINITE = 1  /**< Coons patch on four corners, quads (or split triangles); with edge nodes set
+  WEFM_MESH_TRANSFINITE = 1, /**< Coons patch on four corners, quads (or split triangles); with edge nodes set
                                   (wefm_face_set_edge_nodes) the sides carry those nodes and opposite sides
                                   must have as many (else WEFM_ERROR_UNSUPPORTED) */
+  WEFM_MESH_AUTO = 2         /**< transfinite where the domain is four-sided (one loop; four vertices where its
+                                  boundary turns left by 30 to 150 degrees, every other turn under 20) and
+                                  the grid's worst quad has a scaled Jacobian of at least 0.3, on those four
+                                  corners (`corners` ignored); else free. wefm_mesh_report.transfinite says
+                                  which. Opposite sides with unlike counts of caller nodes give a free mesh,
+                                  not an error */
 } wefm_mesh_type;
 
 /** wefm_mesh_options.elements: the elements of a free mesh. */
@@ -783,6 +789,8 @@ typedef struct wefm_mesh_report {
   double time_boundary, time_mesh, time_smooth, time_map;
   int64_t quads;                 /**< elements with four nodes (the rest are triangles) */
   double quad_area_fraction;     /**< the quads' share of the mesh's 3D area */
+  int32_t transfinite;           /**< non-zero: a transfinite grid (WEFM_MESH_TRANSFINITE, or chosen by
+                                      WEFM_MESH_AUTO); zero: a free mesh */
 } wefm_mesh_report;
 
 /** Fill `options` with the defaults (size must still be set); `struct_size` as for wefm_options_init(). */

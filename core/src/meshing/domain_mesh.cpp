@@ -20,12 +20,70 @@ namespace {
 // or 163 is worse for a solver than the two triangles it replaces.
 constexpr double kMinQuadQuality = 0.3;
 
+// The free mesh (METHOD §9.2): the boundary discretised, triangulated and refined in UV, lifted to
+// 3D, then paired into quads and split as the options ask.
+void mesh_free(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
+               const EdgeNodes& given, double estimate, const MeshControl& control, DomainMesh& out) {
+  double t0 = now();
+  const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);
+  out.report.time_boundary = now() - t0;
+  control.check(0.1);
+  free_mesh(loops, map, o, estimate / 2.5, out, control);
+  control.check(0.95);
+  t0 = now();
+  out.normal.resize(out.uv.size());
+  for (size_t k = 0; k < out.uv.size(); ++k) {
+    Vec3 x;
+    if (!map.lift(out.uv[k], x, &out.normal[k])) out.report.outside_nodes++;
+    if (static_cast<Index>(k) >= out.boundary_nodes) out.xyz[k] = x;
+  }
+  out.report.time_map = now() - t0;
+  if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 3) > o.max_elements)
+    fail(Errc::invalid_argument, "the free mesh needs more than max_elements = " + std::to_string(o.max_elements) + " triangles at size " + std::to_string(o.size));
+  if (o.elements != Elements::Triangles) recombine(out, kMinQuadQuality);
+  if (o.elements == Elements::Quads) {
+    split_into_quads(out, map);
+    if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 4) > o.max_elements)
+      fail(Errc::invalid_argument, "the all-quad mesh needs more than max_elements = " + std::to_string(o.max_elements) + " quads at size " + std::to_string(o.size));
+  }
+  if (o.elements != Elements::Triangles) smooth_quads(out, map, o.smoothing_iterations);
+}
+
+// A transfinite grid whose worst quad is below this is not chosen by MeshType::Automatic: its free
+// mesh is better for a solver.
+constexpr double kAutomaticGridFloor = 0.3;
+
+// MeshType::Automatic: the transfinite grid on the domain's four corners where it has them and the
+// grid is good (kAutomaticGridFloor), else the free mesh. A grid the transfinite mesher refuses
+// (opposite sides with unlike counts of caller nodes) is not an error here.
+void mesh_automatic(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
+                    const EdgeNodes& given, double estimate, const MeshControl& control, DomainMesh& out) {
+  if (const auto c = four_corners(topo, uv)) {
+    MeshOptions grid = o;
+    grid.type = MeshType::Transfinite;
+    for (size_t k = 0; k < 4; ++k) grid.corners[k] = topo.loop_uses[static_cast<size_t>(topo.outer_loop)][(*c)[k]];
+    try {
+      DomainMesh trial;
+      transfinite_mesh(mesh, topo, uv, map, grid, given, trial);
+      measure_quality(trial);
+      if (trial.report.quads == 0 || trial.report.scaled_jacobian_min >= kAutomaticGridFloor) {
+        out = std::move(trial);
+        return;
+      }
+    } catch (const Error& e) {
+      if (e.code() != Errc::unsupported) throw;
+    }
+  }
+  mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
+}
+
 }  // namespace
 
 DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const MeshOptions& o, const EdgeNodes& given,
                        const MeshControl& control) {
   if (!(o.size > 0) || !std::isfinite(o.size)) fail(Errc::invalid_argument, "mesh size must be a positive number (got " + std::to_string(o.size) + ")");
-  if (o.type != MeshType::Free && o.type != MeshType::Transfinite) fail(Errc::invalid_argument, "unknown mesh type " + std::to_string(static_cast<int>(o.type)));
+  if (o.type != MeshType::Free && o.type != MeshType::Transfinite && o.type != MeshType::Automatic)
+    fail(Errc::invalid_argument, "unknown mesh type " + std::to_string(static_cast<int>(o.type)) + " (0 free, 1 transfinite, 2 automatic)");
   if (o.elements != Elements::Triangles && o.elements != Elements::QuadDominant && o.elements != Elements::Quads)
     fail(Errc::invalid_argument, "unknown element kind " + std::to_string(static_cast<int>(o.elements)) + " (0 triangles, 1 quad-dominant, 2 quads)");
   if (!(o.min_angle_deg >= 0 && o.min_angle_deg <= 34)) fail(Errc::invalid_argument, "min_angle_deg must lie in [0, 34] for refinement to terminate (got " + std::to_string(o.min_angle_deg) + ")");
@@ -47,33 +105,9 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
   control.check(0.0);
   DomainMesh out;
   const SurfaceMap map(mesh, topo, uv);
-  if (o.type == MeshType::Transfinite) {
-    transfinite_mesh(mesh, topo, uv, map, o, given, out);
-  } else {
-    double t0 = now();
-    const auto loops = discretise_loops(mesh, topo, uv, o.size, o.corner_angle_deg * kPi / 180.0, given, kSizeGradation);
-    out.report.time_boundary = now() - t0;
-    control.check(0.1);
-    free_mesh(loops, map, o, estimate / 2.5, out, control);
-    control.check(0.95);
-    t0 = now();
-    out.normal.resize(out.uv.size());
-    for (size_t k = 0; k < out.uv.size(); ++k) {
-      Vec3 x;
-      if (!map.lift(out.uv[k], x, &out.normal[k])) out.report.outside_nodes++;
-      if (static_cast<Index>(k) >= out.boundary_nodes) out.xyz[k] = x;
-    }
-    out.report.time_map = now() - t0;
-    if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 3) > o.max_elements)
-      fail(Errc::invalid_argument, "the free mesh needs more than max_elements = " + std::to_string(o.max_elements) + " triangles at size " + std::to_string(o.size));
-    if (o.elements != Elements::Triangles) recombine(out, kMinQuadQuality);
-    if (o.elements == Elements::Quads) {
-      split_into_quads(out, map);
-      if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 4) > o.max_elements)
-        fail(Errc::invalid_argument, "the all-quad mesh needs more than max_elements = " + std::to_string(o.max_elements) + " quads at size " + std::to_string(o.size));
-    }
-    if (o.elements != Elements::Triangles) smooth_quads(out, map, o.smoothing_iterations);
-  }
+  if (o.type == MeshType::Transfinite) transfinite_mesh(mesh, topo, uv, map, o, given, out);
+  else if (o.type == MeshType::Automatic) mesh_automatic(mesh, topo, uv, map, o, given, estimate, control, out);
+  else mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
   // A node the mapping could not place (NaN from the mesher) would reach the caller as garbage.
   for (size_t k = 0; k < out.uv.size(); ++k)
     if (!out.uv[k].allFinite() || !out.xyz[k].allFinite())

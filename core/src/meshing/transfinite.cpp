@@ -37,6 +37,23 @@ std::array<size_t, 4> transfinite_corners(const Topology& topo, const VectorXc& 
   return c;
 }
 
+std::optional<std::array<size_t, 4>> four_corners(const Topology& topo, const VectorXc& uv) {
+  constexpr double kLeast = 30 * kPi / 180, kMost = 150 * kPi / 180, kSide = 20 * kPi / 180;
+  if (topo.loop_uses.size() != 1) return std::nullopt;
+  const Index l = topo.outer_loop;
+  const size_t n = topo.loop_uses[static_cast<size_t>(l)].size();
+  std::array<size_t, 4> c{};
+  size_t found = 0;
+  for (size_t j = 0; j < n; ++j) {
+    const double t = turning_angle(topo, uv, l, j);
+    if (std::fabs(t) < kSide) continue;
+    if (t < kLeast || t > kMost || found == 4) return std::nullopt;
+    c[found++] = j;
+  }
+  if (found != 4) return std::nullopt;
+  return c;
+}
+
 namespace {
 
 // Before the grid is allocated: a size far below the face's would otherwise exhaust memory.
@@ -224,6 +241,7 @@ void transfinite_mesh(const TriMesh& mesh, const Topology& topo, const VectorXc&
   }
   out.report.time_map = now() - t1;
   emit_grid(n_out, m_out, o.quads, out);
+  out.report.transfinite = true;
 }
 
 }  // namespace wefm::meshing

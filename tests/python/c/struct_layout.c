@@ -118,5 +118,6 @@ int main(void) {
   FIELD(wefm_mesh_report, time_map);
   FIELD(wefm_mesh_report, quads);
   FIELD(wefm_mesh_report, quad_area_fraction);
+  FIELD(wefm_mesh_report, transfinite);
   return 0;
 }

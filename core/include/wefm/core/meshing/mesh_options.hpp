@@ -8,7 +8,8 @@
 
 namespace wefm::meshing {
 
-enum class MeshType : int { Free = 0, Transfinite = 1 };
+// Automatic: transfinite where the domain is four-sided (four_corners) and the grid is good, else free.
+enum class MeshType : int { Free = 0, Transfinite = 1, Automatic = 2 };
 // Free meshes: triangles; quads where pairs of triangles make good ones (a triangle left as four
 // nodes, the last -1); or quads only.
 enum class Elements : int { Triangles = 0, QuadDominant = 1, Quads = 2 };
@@ -35,6 +36,7 @@ struct MeshReport {
   std::int64_t quads = 0;               // elements with four nodes
   double quad_area_fraction = 0;        // their share of the mesh's 3D area
   std::int64_t outside_nodes = 0;  // nodes whose UV fell outside the solved domain (mapped to the nearest point)
+  bool transfinite = false;        // the mesh is a transfinite grid (asked for, or chosen by Automatic)
 };
 
 }  // namespace wefm::meshing
