@@ -80,6 +80,9 @@ std::vector<OptionSpec> mesh_model_specs() {
                                   "across the model by adding segments (at most doubling an edge's); a face that cannot "
                                   "be matched, or whose grid would have a scaled Jacobian under 0.3, is meshed free. "
                                   "named: only the --transfinite faces", "auto with quads, named with tri", false},
+      {"mapped-grid-limit", 0, "R", "a face found four-sided keeps its grid only if it has at most R times the elements of "
+                                    "the face's free mesh (a grid carries an edge's fine segments all across the face; "
+                                    "the free mesh is then made too); 0: any grid", "0", false},
       {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, a seam and two ends with as "
                                  "many segments, is meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
       {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
@@ -168,6 +171,7 @@ constexpr double kMappedQuadFloor = 0.3;
 struct MappedRequest {
   wefm_mesh_options options{};
   double floor = 0;
+  double most_elements = 0;  // > 0: a grid with more than this many times the free mesh's elements is not kept
   std::array<int32_t, 4> corner_vertices{-1, -1, -1, -1};
 };
 
@@ -188,6 +192,55 @@ void set_corner_uses(wefm_face* face, const std::array<int32_t, 4>& corner_verti
         std::find(corner_vertices.begin(), corner_vertices.end(), vertex_of[static_cast<size_t>(u)]) != corner_vertices.end())
       found.push_back(u);
   if (found.size() == 4) std::copy(found.begin(), found.end(), options.corners);
+}
+
+// The domain mesh of a face meant to be mapped: the transfinite grid, unless the library refuses it
+// (not four corners, unlike counts), its worst quad is below the request's floor, or it has more
+// elements than the request allows against the free mesh (a grid carries an edge's fine segments
+// all across the face, where a free mesh grades back up): then the free mesh, and r.mapped_refused
+// says why. r.type says which.
+wefm_status mesh_mapped(wefm_face* raw, const MappedRequest& mapped, const wefm_mesh_options& free_options, FaceMeshRun& r,
+                        wefm_domain_mesh** out) {
+  wefm_mesh_options map_options = mapped.options;
+  set_corner_uses(raw, mapped.corner_vertices, map_options);
+  wefm_domain_mesh* grid_raw = nullptr;
+  const wefm_status st = wefm_face_mesh_domain(raw, &map_options, &grid_raw);
+  OwnedDomainMesh grid(grid_raw);
+  if (st != WEFM_OK && st != WEFM_ERROR_UNSUPPORTED) return st;
+  wefm_mesh_report g;
+  wefm_mesh_report_init(&g, sizeof g);
+  char text[160] = "";
+  if (st == WEFM_ERROR_UNSUPPORTED) {
+    r.mapped_refused = wefm_face_last_error(raw);
+  } else if (wefm_domain_mesh_get_report(grid.get(), &g) != WEFM_OK) {
+    r.mapped_refused = "no report of the grid";
+  } else if (mapped.floor > 0 && g.quads > 0 && g.scaled_jacobian_min < mapped.floor) {
+    std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below %g", g.scaled_jacobian_min, mapped.floor);
+    r.mapped_refused = text;
+  } else if (!(mapped.most_elements > 0)) {
+    r.type = "transfinite";
+    *out = grid.release();
+    return WEFM_OK;
+  }
+  wefm_domain_mesh* free_raw = nullptr;
+  const wefm_status fs = wefm_face_mesh_domain(raw, &free_options, &free_raw);
+  OwnedDomainMesh free_mesh(free_raw);
+  wefm_mesh_report f;
+  wefm_mesh_report_init(&f, sizeof f);
+  if (r.mapped_refused.empty()) {
+    // The grid is good; it is kept unless the free mesh is much leaner (or fails).
+    if (fs != WEFM_OK || wefm_domain_mesh_get_report(free_mesh.get(), &f) != WEFM_OK ||
+        !(static_cast<double>(g.elements) > mapped.most_elements * static_cast<double>(f.elements))) {
+      r.type = "transfinite";
+      *out = grid.release();
+      return WEFM_OK;
+    }
+    std::snprintf(text, sizeof text, "the grid has %lld elements, more than %g times the free mesh's %lld",
+                  static_cast<long long>(g.elements), mapped.most_elements, static_cast<long long>(f.elements));
+    r.mapped_refused = text;
+  }
+  *out = free_mesh.release();
+  return fs;
 }
 
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,
@@ -246,31 +299,8 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
   wefm_domain_mesh* dm_raw = nullptr;
   {
     WatchedFace watched(&watcher, raw);
-    bool free_mesh = !mapped;
-    if (mapped) {
-      r.type = "transfinite";
-      wefm_mesh_options map_options = mapped->options;
-      set_corner_uses(raw, mapped->corner_vertices, map_options);
-      st = wefm_face_mesh_domain(raw, &map_options, &dm_raw);
-      free_mesh = st == WEFM_ERROR_UNSUPPORTED;
-      if (free_mesh) r.mapped_refused = wefm_face_last_error(raw);
-      wefm_mesh_report grid;
-      wefm_mesh_report_init(&grid, sizeof grid);
-      if (st == WEFM_OK && mapped->floor > 0 && wefm_domain_mesh_get_report(dm_raw, &grid) == WEFM_OK && grid.quads > 0 &&
-          grid.scaled_jacobian_min < mapped->floor) {
-        char text[128];
-        std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below %g", grid.scaled_jacobian_min,
-                      mapped->floor);
-        r.mapped_refused = text;
-        wefm_domain_mesh_release(dm_raw);
-        dm_raw = nullptr;
-        free_mesh = true;
-      }
-    }
-    if (free_mesh) {
-      r.type = "free";
-      st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
-    }
+    r.type = "free";
+    st = mapped ? mesh_mapped(raw, *mapped, mesh_options, r, &dm_raw) : wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
   }
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
   r.time_mesh += since(t1);
@@ -614,6 +644,7 @@ struct MeshModelRequest {
   std::set<long long> transfinite;  // face numbers
   bool quiet = false, local_size = true, merge_faces = true, mapped_tubes = true;
   bool mapped_auto = false;  // four-sided faces found and mapped (--mapped auto)
+  double mapped_grid_limit = 0;  // --mapped-grid-limit: a grid with more than this many times the free mesh's elements is not kept (0: any)
   bool conformal_first = true;  // no --s: kConformalS first
   int elements = WEFM_ELEMENTS_TRIANGLES;
 };
@@ -673,6 +704,8 @@ int parse_request(const std::vector<std::string>& argv, MeshModelRequest& q) {
     if (m != "auto" && m != "named") return usage("--mapped: expected auto or named, got '" + m + "'");
     q.mapped_auto = m == "auto";
   }
+  if (args.has("mapped-grid-limit") && (!parse_double(args.value("mapped-grid-limit"), q.mapped_grid_limit) || !(q.mapped_grid_limit >= 0)))
+    return usage("--mapped-grid-limit: expected a number >= 0");
   q.model_path = args.positionals[0];
   std::vector<NamedPath> outputs = {{"-o", q.out_path}};
   if (args.has("report")) {
@@ -811,6 +844,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
       mapped.options = tf_options;
       options.size = mapped.options.size = plan.face_sizes[i];
       mapped.floor = map && !named && !plan.tubes.count(i) ? kMappedQuadFloor : 0;
+      mapped.most_elements = mapped.floor > 0 ? q.mapped_grid_limit : 0;
       if (const auto c = plan.mapping.sides.find(i); c != plan.mapping.sides.end()) mapped.corner_vertices = c->second.corners;
       mesh_one_face(runs[i], q.settings, q.conformal_first, options, map ? &mapped : nullptr, plan.edge_nodes, watcher);
       return true;
@@ -931,7 +965,7 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
   if (!plan.mapping.faces.empty() || plan.mapping.four_sided) {
     const MappedCounts m = mapped_counts(plan, runs);
     std::printf("mapped: %zu of %zu faces (%zu four-sided) meshed transfinite; %zu planned free (node counts not matched, or "
-                "nodes that follow a face lying on another); %zu meshed free at the library's or the quad floor's say; %zu edges "
+                "nodes that follow a face lying on another); %zu meshed free at the library's, the quad floor's or the grid limit's say; %zu edges "
                 "recounted to match; %zu mapped faces with unlike opposite counts\n",
                 m.mapped, m.candidates, m.four_sided, m.planned_free, m.meshed_free, m.recounted, m.mismatched);
   }

@@ -18,7 +18,8 @@ merged with their neighbours), from the MSH itself:
   expects (0 unexplained edges);
 - mapped faces found automatically (issue 32 item 2): the plate's four-sided faces are meshed
   transfinite on the model's shared nodes, their elements all quads and the model still closed;
-  with `--mapped named` only the tube is mapped (its strip is not four-sided's doing);
+  with `--mapped named` only the tube is mapped (its strip is not four-sided's doing); with
+  `--mapped-grid-limit 0.5` no grid is kept that has more than half the elements of the face's free mesh;
 - a bad value refused with exit 2 and a reason, no file written.
 
 usage: quad_dominant_test.py WEFM PIN_PLATE.brep BOX.brep
@@ -106,6 +107,12 @@ def main():
         assert rn["mapped"]["mapped"] == 0 and rn["mapped"]["candidates"] == 0, rn["mapped"]
         assert [f["face"] for f in rn["faces"] if f["type"] == "transfinite"] == [tube["face"]]
         assert r["quads"]["scaled_jacobian_mean"] > rn["quads"]["scaled_jacobian_mean"], (r["quads"], rn["quads"])
+        # A grid limit of 0.5: a grid with more than half the elements of the face's free mesh (every
+        # grid here) is not kept; the face is meshed free and says why.
+        rl, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad-dominant", "--mapped-grid-limit", "0.5")
+        limited = [f for f in rl["faces"] if (f["mapped_refused"] or "").startswith("the grid has")]
+        assert limited and all(f["type"] == "free" for f in limited), limited
+        assert rl["mapped"]["mapped"] + len(limited) == m["mapped"], (rl["mapped"], len(limited))
         r4, faces4 = check(wefm, pin_plate, tmp, "pin_plate", "quad")
         tube4 = next(f for f in r4["faces"] if f["face"] == tube["face"])
         assert tube4["type"] == "transfinite", tube4
