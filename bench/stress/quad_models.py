@@ -6,9 +6,11 @@ wefm's all-quad meshes against Gmsh's with `-setnumber Mesh.SubdivisionAlgorithm
 every element into quads, sides about h / 2). Whole processes under a time limit; both MSH files read back and measured here alike: quads and triangles, the quads' share of the
 3D area, the scaled Jacobian of the quads (min over the corners of (e1 x e2) . n / (|e1| |e2|), n the
 quad's mean normal; below 0 is folded or inverted), element edges used once (open) or more than twice
-(non-manifold), and wall time. wefm's report says which open or non-manifold edges its B-rep explains.
+(non-manifold), and wall time. wefm's report says which open or non-manifold edges its B-rep explains,
+and how many four-sided faces it meshed mapped.
 
     quad_models.py WEFM OUTDIR MODEL... [--ratio R] [--timeout S] [--elements quad-dominant|quad]
+    quad_models.py - OUTDIR - --table-only     # the table of an earlier run again (WEFM, MODEL ignored)
 
 Prints a Markdown table and a summary; writes OUTDIR/quads.json. Needs /usr/bin/python3 (numpy, meshio).
 """
@@ -76,7 +78,16 @@ def main():
     ap.add_argument("--ratio", type=float, default=0.025)
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--elements", choices=["quad-dominant", "quad"], default="quad-dominant")
+    ap.add_argument("--table-only", action="store_true", help="print the table of OUTDIR/quads.json again, running nothing")
     a = ap.parse_args()
+    if a.table_only:
+        rows = json.load(open(os.path.join(a.outdir, "quads.json")))
+        for r in rows:  # runs from before the mapped column: their reports have it
+            path = os.path.join(a.outdir, r["model"] + ".wefm.json")
+            if "mapped" not in r["wefm"] and os.path.exists(path):
+                r["wefm"]["mapped"] = json.load(open(path)).get("mapped")
+        print_table(rows)
+        return
     subdivide = ["-setnumber", "Mesh.SubdivisionAlgorithm", "1"] if a.elements == "quad" else []
     os.makedirs(a.outdir, exist_ok=True)
     rows = []
@@ -90,7 +101,8 @@ def main():
             rep = json.load(open(base + ".wefm.json"))
             row["h"] = rep["size"]
             c = rep["conformity"]
-            row["wefm"].update(measure(base + ".wefm.msh"), unexplained=c["unexplained_open_edges"] + c["unexplained_non_manifold_edges"])
+            row["wefm"].update(measure(base + ".wefm.msh"), unexplained=c["unexplained_open_edges"] + c["unexplained_non_manifold_edges"],
+                               mapped=rep.get("mapped"))
             rc, wall = timed(["gmsh", model, "-2", "-clmax", repr(rep["size"]), "-setnumber", "Mesh.RecombineAll", "1", *subdivide, "-nt", "1",
                               "-format", "msh41", "-o", base + ".gmsh.msh"], base + ".gmsh.log", a.timeout)
             row["gmsh"] = {"exit": rc, "wall": wall}
@@ -102,18 +114,26 @@ def main():
         rows.append(row)
         print(json.dumps(row), file=sys.stderr, flush=True)
     json.dump(rows, open(os.path.join(a.outdir, "quads.json"), "w"), indent=1)
+    print_table(rows)
 
+
+def print_table(rows):
+    """The Markdown table and the summary line of a run's rows."""
     def cell(r, who):
         x = r.get(who, {})
         if "quads" not in x:
             return [str(x.get("exit", "-"))] + ["-"] * 5
         sj = f"{x['sj_min']:.2f} / {x['sj_mean']:.3f}" if "sj_min" in x else "-"
         return [str(x["exit"]), f"{x['quads']} + {x['triangles']}", f"{100 * x['quad_area']:.1f}", sj, f"{x['open']}/{x['non_manifold']}", f"{x['wall']:.1f}"]
-    print("| model | h | wefm exit | wefm quads + tris | wefm % area in quads | wefm SJ min / mean | wefm open/nm | wefm s | "
+
+    def mapped(r):
+        m = r.get("wefm", {}).get("mapped")
+        return f"{m['mapped']} / {m['candidates']}" if m else "-"
+    print("| model | h | wefm exit | wefm quads + tris | wefm % area in quads | wefm SJ min / mean | wefm open/nm | wefm s | wefm mapped / four-sided | "
           "gmsh exit | gmsh quads + tris | gmsh % area in quads | gmsh SJ min / mean | gmsh open/nm | gmsh s |")
-    print("|---|---:|" + "---|" * 12)
+    print("|---|---:|" + "---|" * 13)
     for r in rows:
-        print("| " + " | ".join([r["model"], f"{r['h']:.4g}" if "h" in r else "-"] + cell(r, "wefm") + cell(r, "gmsh")) + " |")
+        print("| " + " | ".join([r["model"], f"{r['h']:.4g}" if "h" in r else "-"] + cell(r, "wefm") + [mapped(r)] + cell(r, "gmsh")) + " |")
     both = [r for r in rows if "sj_mean" in r["wefm"] and "sj_mean" in r.get("gmsh", {})]
     ok = [r for r in rows if "quads" in r["wefm"]]
     print(f"\n{len(rows)} models: wefm exit 0 on {sum(1 for r in rows if r['wefm']['exit'] == 0)}, "
@@ -123,6 +143,11 @@ def main():
           f"folded or inverted quads on {sum(1 for r in ok if r['wefm'].get('folded', 0))}; where both make quads ({len(both)}): "
           f"mean scaled Jacobian >= Gmsh's on {sum(1 for r in both if r['wefm']['sj_mean'] >= r['gmsh']['sj_mean'])}, "
           f"wall {sum(r['wefm']['wall'] for r in both):.1f} s against Gmsh's {sum(r['gmsh']['wall'] for r in both):.1f} s")
+    ms = [r["wefm"]["mapped"] for r in ok if r["wefm"].get("mapped")]
+    if ms:
+        print(f"mapped faces: {sum(m['mapped'] for m in ms)} of {sum(m['candidates'] for m in ms)} four-sided or named "
+              f"({sum(m['planned_free'] for m in ms)} planned free, {sum(m['meshed_free'] for m in ms)} meshed free), "
+              f"{sum(m['recounted_edges'] for m in ms)} edges recounted, {sum(m['mismatched'] for m in ms)} mapped faces with unlike opposite counts")
 
 
 if __name__ == "__main__":
