@@ -19,6 +19,7 @@
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "seams_file.hpp"
+#include "size_query.hpp"
 #include "topology_file.hpp"
 
 namespace wefm_cli {
@@ -69,14 +70,6 @@ std::string default_domain_path(const std::string& mesh) {
   const size_t dot = mesh.rfind('.'), slash = mesh.find_last_of("/\\");
   const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
   return has_ext ? mesh.substr(0, dot) + ".domain" + mesh.substr(dot) : mesh + ".domain.obj";
-}
-
-template <class T, class Getter>
-bool fetch(std::vector<T>& out, Getter get) {
-  int64_t n = 0;
-  if (get(nullptr, 0, &n) != WEFM_OK) return false;
-  out.assign(static_cast<size_t>(n), T{});
-  return n == 0 || get(out.data(), n, &n) == WEFM_OK;
 }
 
 struct MeshArrays {
@@ -285,9 +278,9 @@ class MeshRun {
     wefm_mesh_report_init(&report, sizeof report);
     wefm_domain_mesh_get_report(raw, &report);
     arrays.npe = report.nodes_per_element;
-    const bool ok = fetch(arrays.uv, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_uv(raw, b, c, n); }) &&
-                    fetch(arrays.xyz, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_xyz(raw, b, c, n); }) &&
-                    fetch(arrays.elements, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_elements(raw, b, c, n); });
+    const bool ok = fetch(arrays.uv, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_uv(raw, b, c, n); }) == WEFM_OK &&
+                    fetch(arrays.xyz, [&](double* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_xyz(raw, b, c, n); }) == WEFM_OK &&
+                    fetch(arrays.elements, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_domain_mesh_get_elements(raw, b, c, n); }) == WEFM_OK;
     return ok || fail(kExitSolver, "reading the mesh: " + std::string(wefm_last_error()));
   }
 

@@ -31,9 +31,11 @@
 #include "flatten_settings.hpp"
 #include "mesh_formats.hpp"
 #include "mapped_faces.hpp"
+#include "mapped_mesh.hpp"
 #include "mapped_tubes.hpp"
 #include "model_mesh.hpp"
 #include "output_file.hpp"
+#include "size_query.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
 #include "virtual_faces.hpp"
@@ -152,96 +154,9 @@ Json defect_edges_json(const ConformityCounts& conf) {
   return out;
 }
 
-template <class T, class G>
-wefm_status fetch(std::vector<T>& out, G get) {
-  int64_t n = 0;
-  wefm_status st = get(nullptr, 0, &n);
-  if (st != WEFM_OK) return st;
-  out.assign(static_cast<size_t>(n), T{});
-  return n == 0 ? WEFM_OK : get(out.data(), n, &n);
-}
-
 // A face mapped because it was found four-sided (not named by the caller) is meshed free instead
 // where its grid's worst quad has a scaled Jacobian below this: issue 32's floor for quads.
 constexpr double kMappedQuadFloor = 0.3;
-
-// How a face is to be meshed mapped: the transfinite options, the floor of its grid's worst quad (0:
-// any grid), and its corners as vertices of the face (-1: the library picks the domain's sharpest
-// four).
-struct MappedRequest {
-  wefm_mesh_options options{};
-  double floor = 0;
-  double most_elements = 0;  // > 0: a grid with more than this many times the free mesh's elements is not kept
-  std::array<int32_t, 4> corner_vertices{-1, -1, -1, -1};
-};
-
-// The outer loop's uses of the corner vertices, in loop order, into options.corners, where there are
-// exactly four (a corner vertex used twice by the loop, on a seam, is a corner both times on a
-// cylinder between two circles); else the library detects them.
-void set_corner_uses(wefm_face* face, const std::array<int32_t, 4>& corner_vertices, wefm_mesh_options& options) {
-  if (corner_vertices[0] < 0) return;
-  int32_t loop = 0;
-  std::vector<int32_t> uses, vertex_of;
-  if (wefm_face_outer_loop(face, &loop) != WEFM_OK ||
-      fetch(uses, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_face_get_loop_uses(face, loop, b, c, n); }) != WEFM_OK ||
-      fetch(vertex_of, [&](int32_t* b, int64_t c, int64_t* n) { return wefm_face_get_use_vertices(face, b, c, n); }) != WEFM_OK)
-    return;
-  std::vector<int32_t> found;
-  for (int32_t u : uses)
-    if (u >= 0 && static_cast<size_t>(u) < vertex_of.size() &&
-        std::find(corner_vertices.begin(), corner_vertices.end(), vertex_of[static_cast<size_t>(u)]) != corner_vertices.end())
-      found.push_back(u);
-  if (found.size() == 4) std::copy(found.begin(), found.end(), options.corners);
-}
-
-// The domain mesh of a face meant to be mapped: the transfinite grid, unless the library refuses it
-// (not four corners, unlike counts), its worst quad is below the request's floor, or it has more
-// elements than the request allows against the free mesh (a grid carries an edge's fine segments
-// all across the face, where a free mesh grades back up): then the free mesh, and r.mapped_refused
-// says why. r.type says which.
-wefm_status mesh_mapped(wefm_face* raw, const MappedRequest& mapped, const wefm_mesh_options& free_options, FaceMeshRun& r,
-                        wefm_domain_mesh** out) {
-  wefm_mesh_options map_options = mapped.options;
-  set_corner_uses(raw, mapped.corner_vertices, map_options);
-  wefm_domain_mesh* grid_raw = nullptr;
-  const wefm_status st = wefm_face_mesh_domain(raw, &map_options, &grid_raw);
-  OwnedDomainMesh grid(grid_raw);
-  if (st != WEFM_OK && st != WEFM_ERROR_UNSUPPORTED) return st;
-  wefm_mesh_report g;
-  wefm_mesh_report_init(&g, sizeof g);
-  char text[160] = "";
-  if (st == WEFM_ERROR_UNSUPPORTED) {
-    r.mapped_refused = wefm_face_last_error(raw);
-  } else if (wefm_domain_mesh_get_report(grid.get(), &g) != WEFM_OK) {
-    r.mapped_refused = "no report of the grid";
-  } else if (mapped.floor > 0 && g.quads > 0 && g.scaled_jacobian_min < mapped.floor) {
-    std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below %g", g.scaled_jacobian_min, mapped.floor);
-    r.mapped_refused = text;
-  } else if (!(mapped.most_elements > 0)) {
-    r.type = "transfinite";
-    *out = grid.release();
-    return WEFM_OK;
-  }
-  wefm_domain_mesh* free_raw = nullptr;
-  const wefm_status fs = wefm_face_mesh_domain(raw, &free_options, &free_raw);
-  OwnedDomainMesh free_mesh(free_raw);
-  wefm_mesh_report f;
-  wefm_mesh_report_init(&f, sizeof f);
-  if (r.mapped_refused.empty()) {
-    // The grid is good; it is kept unless the free mesh is much leaner (or fails).
-    if (fs != WEFM_OK || wefm_domain_mesh_get_report(free_mesh.get(), &f) != WEFM_OK ||
-        !(static_cast<double>(g.elements) > mapped.most_elements * static_cast<double>(f.elements))) {
-      r.type = "transfinite";
-      *out = grid.release();
-      return WEFM_OK;
-    }
-    std::snprintf(text, sizeof text, "the grid has %lld elements, more than %g times the free mesh's %lld",
-                  static_cast<long long>(g.elements), mapped.most_elements, static_cast<long long>(f.elements));
-    r.mapped_refused = text;
-  }
-  *out = free_mesh.release();
-  return fs;
-}
 
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,
 // so a conformal domain that is unusable is meshed anyway (and fails or not as the mesher says).
@@ -300,7 +215,14 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
   {
     WatchedFace watched(&watcher, raw);
     r.type = "free";
-    st = mapped ? mesh_mapped(raw, *mapped, mesh_options, r, &dm_raw) : wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+    if (mapped) {
+      const MappedOutcome m = mesh_mapped(raw, *mapped, mesh_options, &dm_raw);
+      st = m.status;
+      if (m.transfinite) r.type = "transfinite";
+      r.mapped_refused = m.refused;
+    } else {
+      st = wefm_face_mesh_domain(raw, &mesh_options, &dm_raw);
+    }
   }
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
   r.time_mesh += since(t1);

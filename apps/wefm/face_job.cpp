@@ -10,6 +10,7 @@
 #include "mesh_formats.hpp"
 #include "report_output.hpp"
 #include "seams_file.hpp"
+#include "size_query.hpp"
 #include "owned.hpp"
 #include "topology_file.hpp"
 
@@ -56,15 +57,6 @@ int write_layout(const FaceJob& job, const FaceSnapshot& snap, std::string& erro
   MeshFormat format = MeshFormat::obj;
   if (!mesh_format_of(job.output_mesh, format, error)) return kExitUsage;
   return write_mesh(job.output_mesh, format, layout_mesh(job, snap, format), error);
-}
-
-template <class T, class Getter>
-wefm_status fetch(std::vector<T>& out, Getter get) {
-  int64_t n = 0;
-  wefm_status st = get(nullptr, 0, &n);
-  if (st != WEFM_OK) return st;
-  out.assign(static_cast<size_t>(n), T{});
-  return n == 0 ? WEFM_OK : get(out.data(), n, &n);
 }
 
 class Runner {

@@ -2,22 +2,9 @@
 
 #include <cmath>
 
+#include "size_query.hpp"
+
 namespace wefm_cli {
-
-namespace {
-
-// The header's two-call protocol: ask for the size with a NULL buffer, then fill.
-template <class T, class Getter>
-wefm_status fetch(std::vector<T>& out, Getter get) {
-  int64_t n = 0;
-  wefm_status st = get(nullptr, 0, &n);
-  if (st != WEFM_OK) return st;
-  out.assign(static_cast<size_t>(n), T{});
-  if (n == 0) return WEFM_OK;
-  return get(out.data(), n, &n);
-}
-
-}  // namespace
 
 wefm_status snapshot_topology(wefm_face* face, const std::vector<long long>& ids, FaceSnapshot& snap) {
   TopologyFile& t = snap.topology;
