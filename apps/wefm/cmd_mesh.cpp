@@ -435,7 +435,7 @@ void print_summary(const MeshRequest& q, const wefm_mesh_report& r) {
     std::printf("; %lld quads, %.1f%% of the area", static_cast<long long>(r.quads), 100 * r.quad_area_fraction);
   if (r.quads > 0) std::printf("; scaled Jacobian min %.4f mean %.4f", r.scaled_jacobian_min, r.scaled_jacobian_mean);
   if (r.transfinite) std::printf("; transfinite, wiggle max %.3g mean %.3g", r.wiggle_max, r.wiggle_mean);
-  else if (q.mesh.type == WEFM_MESH_AUTO) std::printf("; free (not four-sided, or its grid below 0.3)");
+  else if (q.mesh.type == WEFM_MESH_AUTO) std::printf("; free (not four-sided, unlike caller nodes on opposite sides, or a grid below 0.3)");
   std::printf("\n");
 }
 

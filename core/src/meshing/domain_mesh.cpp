@@ -55,7 +55,8 @@ constexpr double kAutomaticGridFloor = 0.3;
 
 // MeshType::Automatic: the transfinite grid on the domain's four corners where it has them and the
 // grid is good (kAutomaticGridFloor), else the free mesh. A grid the transfinite mesher refuses
-// (opposite sides with unlike counts of caller nodes) is not an error here.
+// (opposite sides with unlike counts of caller nodes, more elements than max_elements) is not an
+// error here: the free mesh has its own say.
 void mesh_automatic(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
                     const EdgeNodes& given, double estimate, const MeshControl& control, DomainMesh& out) {
   if (const auto c = four_corners(topo, uv)) {
@@ -71,7 +72,7 @@ void mesh_automatic(const TriMesh& mesh, const Topology& topo, const VectorXc& u
         return;
       }
     } catch (const Error& e) {
-      if (e.code() != Errc::unsupported) throw;
+      if (e.code() != Errc::unsupported && e.code() != Errc::invalid_argument) throw;
     }
   }
   mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
