@@ -739,8 +739,8 @@ typedef enum wefm_mesh_type {
                                   boundary turns left by 30 to 150 degrees, every other turn under 20) and
                                   the grid's worst quad has a scaled Jacobian of at least 0.3, on those four
                                   corners (`corners` ignored); else free. wefm_mesh_report.transfinite says
-                                  which. Opposite sides with unlike counts of caller nodes give a free mesh,
-                                  not an error */
+                                  which. Opposite sides with unlike counts of caller nodes, or a grid over
+                                  max_elements, give the free mesh, not an error */
 } wefm_mesh_type;
 
 /** wefm_mesh_options.elements: the elements of a free mesh. */
