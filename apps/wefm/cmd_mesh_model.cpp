@@ -974,6 +974,20 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
                      {"mesh_of_face", r.copy_of ? Json(r.copy_of) : Json(nullptr)},
                      {"merged_faces", merged_into(plan.virtual_faces, r.face->index)},
                      {"time_flatten", r.time_solve}, {"time_mesh", r.time_mesh}});
+    if (q.elements != WEFM_ELEMENTS_TRIANGLES) {
+      // The face's quads as the library meshed them (a face lying on another: that face's), before
+      // welding re-splits any; "elements" above counts their halves.
+      const FaceMeshRun* m = &r;
+      if (r.copy_of)
+        for (const FaceMeshRun& o : runs)
+          if (o.face->index == r.copy_of) m = &o;
+      const wefm_mesh_report& mr = m->report;
+      Json& f = faces.back();
+      f["quads"] = mr.quads;
+      f["quad_area_fraction"] = mr.quad_area_fraction;
+      f["scaled_jacobian_min"] = mr.quads ? Json(mr.scaled_jacobian_min) : Json(nullptr);
+      f["scaled_jacobian_mean"] = mr.quads ? Json(mr.scaled_jacobian_mean) : Json(nullptr);
+    }
   }
   rep["faces"] = faces;
   rep["merged_faces"] = merges_json(plan.virtual_faces);

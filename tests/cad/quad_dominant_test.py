@@ -82,13 +82,13 @@ def check(wefm, model, tmp, name, kind="quad-dominant", *extra):
         c = report["conformity"]
         assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0, c
     assert min(sj) >= 0.3 and abs(q["scaled_jacobian_min"] - min(sj)) < 1e-9, (q, min(sj))
-    return report, faces
+    return report, faces, points
 
 
 def main():
     wefm, pin_plate, box = sys.argv[1:4]
     with tempfile.TemporaryDirectory() as tmp:
-        r, faces = check(wefm, pin_plate, tmp, "pin_plate")
+        r, faces, points = check(wefm, pin_plate, tmp, "pin_plate")
         tube = next(f for f in r["faces"] if f["surface_type"] == "cylinder")
         assert tube["type"] == "transfinite", tube
         assert all(len(e) == 4 for e in faces[tube["face"]]), "the mapped tube's quads were split"
@@ -100,20 +100,27 @@ def main():
         for f in mapped:
             assert all(len(e) == 4 for e in faces[f["face"]]), f"mapped face {f['face']} has triangles"
             assert f["mapped_refused"] is None, f
+        # Per face: its quads and their scaled Jacobian, as in the file.
+        for f in r["faces"]:
+            mine = [e for e in faces[f["face"]] if len(e) == 4]
+            assert f["quads"] == len(mine), (f["face"], f["quads"], len(mine))
+            if mine:
+                sj = [scaled_jacobian([points[v] for v in e]) for e in mine]
+                assert abs(f["scaled_jacobian_min"] - min(sj)) < 1e-9 and abs(f["scaled_jacobian_mean"] - sum(sj) / len(sj)) < 1e-9, f
         for f in r["faces"]:
             if f["type"] == "free" and f["mapped_refused"] is not None:
                 assert f["mapped_refused"], f
-        rn, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad-dominant", "--mapped", "named")
+        rn, _, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad-dominant", "--mapped", "named")
         assert rn["mapped"]["mapped"] == 0 and rn["mapped"]["candidates"] == 0, rn["mapped"]
         assert [f["face"] for f in rn["faces"] if f["type"] == "transfinite"] == [tube["face"]]
         assert r["quads"]["scaled_jacobian_mean"] > rn["quads"]["scaled_jacobian_mean"], (r["quads"], rn["quads"])
         # A grid limit of 0.5: a grid with more than half the elements of the face's free mesh (every
         # grid here) is not kept; the face is meshed free and says why.
-        rl, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad-dominant", "--mapped-grid-limit", "0.5")
+        rl, _, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad-dominant", "--mapped-grid-limit", "0.5")
         limited = [f for f in rl["faces"] if (f["mapped_refused"] or "").startswith("the grid has")]
         assert limited and all(f["type"] == "free" for f in limited), limited
         assert rl["mapped"]["mapped"] + len(limited) == m["mapped"], (rl["mapped"], len(limited))
-        r4, faces4 = check(wefm, pin_plate, tmp, "pin_plate", "quad")
+        r4, faces4, _ = check(wefm, pin_plate, tmp, "pin_plate", "quad")
         tube4 = next(f for f in r4["faces"] if f["face"] == tube["face"])
         assert tube4["type"] == "transfinite", tube4
         assert len(faces4[tube["face"]]) == 4 * len(faces[tube["face"]]), (len(faces4[tube["face"]]), len(faces[tube["face"]]))
