@@ -524,8 +524,8 @@ EdgeNodes uniform_edge_nodes(const CadFace& face, const CadEdge& edge, long long
 }
 
 EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const EdgeNodes& nodes, long long segments) {
-  if (nodes.xyz.size() < 6 || segments < 1) return uniform_edge_nodes(face, edge, std::max(1LL, segments));
-  const size_t n = nodes.xyz.size() / 3 - 1;
+  if (nodes.segments() < 1 || segments < 1) return uniform_edge_nodes(face, edge, std::max(1LL, segments));
+  const auto n = static_cast<size_t>(nodes.segments());
   const double length = chain_length(face, edge);
   // The old nodes' arc lengths: their chords, scaled to the chain's length (the nodes lie on it).
   std::vector<double> s(n + 1, 0.0);

@@ -13,6 +13,8 @@ namespace wefm_cad {
 
 struct EdgeNodes {
   std::vector<double> xyz;  // 3 per node, in the edge's direction, both end vertices included
+  // Segments between the nodes (0 for fewer than two nodes).
+  long long segments() const { return xyz.size() < 6 ? 0 : static_cast<long long>(xyz.size() / 3) - 1; }
 };
 
 // Local size per face (by CadModel::faces index): a face narrower than h gets 2.5 times its width

@@ -60,7 +60,7 @@ struct Tie {
 class CountMatcher {
  public:
   CountMatcher(const wefm_cad::CadModel& model, const std::map<long long, wefm_cad::EdgeNodes>& nodes) {
-    for (const auto& [id, en] : nodes) count_[id] = target_[id] = static_cast<long long>(en.xyz.size() / 3) - 1;
+    for (const auto& [id, en] : nodes) count_[id] = target_[id] = en.segments();
     for (const wefm_cad::CadFace& f : model.faces)
       for (const wefm_cad::CadEdge& e : f.edges)
         if (nodes.count(e.id) && !length_.count(e.id)) length_[e.id] = wefm_cad::chain_length(f, e);
@@ -205,9 +205,9 @@ MappedFaces map_four_sided_faces(const wefm_cad::CadModel& model, const std::vec
 
 size_t mismatched_faces(const MappedFaces& m, const std::map<long long, wefm_cad::EdgeNodes>& edge_nodes) {
   auto segments = [&](const std::vector<long long>& side) {
-    size_t n = 0;
+    long long n = 0;
     for (long long id : side)
-      if (const auto it = edge_nodes.find(id); it != edge_nodes.end()) n += it->second.xyz.size() / 3 - 1;
+      if (const auto it = edge_nodes.find(id); it != edge_nodes.end()) n += it->second.segments();
     return n;
   };
   size_t out = 0;

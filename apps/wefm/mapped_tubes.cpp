@@ -82,7 +82,7 @@ std::set<size_t> map_thin_tubes(const wefm_cad::CadModel& model, double h, const
       for (const wefm_cad::CadEdge* e : tube.ends[side]) {
         const auto it = edge_nodes.find(e->id);
         if (it == edge_nodes.end()) known = false;
-        else segments[side] += it->second.xyz.size() / 3 - 1;
+        else segments[side] += static_cast<size_t>(it->second.segments());
         end_length[side] += wefm_cad::chain_length(f, *e);
       }
     if (!known) continue;
