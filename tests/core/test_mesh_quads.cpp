@@ -2,11 +2,15 @@
 // then, for all-quad, every element split at its edge midpoints and centre.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
 
 #include "mesh_faces.hpp"
+#include "wefm/core/meshing/mesh_quality.hpp"
+#include "wefm/core/meshing/recombine.hpp"
+#include "wefm/core/meshing/surface_map.hpp"
 
 using namespace wefm;
 
@@ -169,4 +173,48 @@ TEST_CASE("max_elements caps the all-quad mesh's quads, not only the triangles b
   CHECK_THROWS_AS(f.mesh_domain(o), Error);
   o.max_elements = quads.report.elements;
   CHECK(f.mesh_domain(o).report.elements == quads.report.elements);
+}
+
+TEST_CASE("quad smoothing unfolds: interior nodes of an all-quad mesh thrown about come back as quads convex in UV and unfolded in 3D") {
+  const auto f = test::solved(test::saddle(24), 1.0);
+  meshing::MeshOptions o;
+  o.size = 0.1;
+  o.elements = meshing::Elements::Quads;
+  meshing::DomainMesh dm = f.mesh_domain(o);
+  REQUIRE(dm.report.scaled_jacobian_min > 0);
+  const meshing::SurfaceMap map(f.mesh(), f.topo(), f.uv());
+  std::vector<double> shortest(dm.uv.size(), 1e300);
+  for (size_t e = 0; e < dm.elements.size(); e += 4)
+    for (size_t k = 0; k < 4; ++k) {
+      const auto a = static_cast<size_t>(dm.elements[e + k]), b = static_cast<size_t>(dm.elements[e + (k + 1) % 4]);
+      const double d = (dm.uv[a] - dm.uv[b]).norm();
+      shortest[a] = std::min(shortest[a], d), shortest[b] = std::min(shortest[b], d);
+    }
+  auto folded = [&] {
+    int n = 0;
+    for (size_t e = 0; e < dm.elements.size() / 4; ++e) {
+      auto X = [&](size_t k) { return dm.xyz[static_cast<size_t>(dm.elements[4 * e + k])]; };
+      n += !(signed_area_uv(dm, e) > 0) || !(meshing::scaled_jacobian(X(0), X(1), X(2), X(3)) > 0);
+    }
+    return n;
+  };
+  // Each interior node moved by up to 1.5 times its shortest edge, the same pseudo-random way each
+  // run: most quads fold or turn over. Two smoothing passes left one of them folded before the
+  // rounds that unfold what the passes leave (each node's search was held by its neighbours' floor).
+  std::uint64_t state = 12345;
+  auto next = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (size_t i = static_cast<size_t>(dm.boundary_nodes); i < dm.uv.size(); ++i) {
+    const double angle = 2 * 3.14159265358979 * next(), r = 1.5 * shortest[i] * next();
+    dm.uv[i] += r * meshing::P2(std::cos(angle), std::sin(angle));
+    map.lift(dm.uv[i], dm.xyz[i], &dm.normal[i]);
+  }
+  const int before = folded();
+  meshing::smooth_quads(dm, map, 2);
+  const int after = folded();
+  MESSAGE("quads folded or not convex in UV: ", before, " of ", dm.elements.size() / 4, " thrown about, ", after, " after two smoothing passes");
+  CHECK(2 * before > static_cast<int>(dm.elements.size() / 4));
+  CHECK(after == 0);
 }

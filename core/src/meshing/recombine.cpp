@@ -139,6 +139,9 @@ double worst_of(const DomainMesh& m, const std::vector<size_t>& es) {
   return w;
 }
 
+// The scaled Jacobian the quads around a folded element keep while a compass search unfolds it.
+constexpr double kUnfoldedFloor = 1e-3;
+
 // Compass search on the worst element around node i (8 directions, the step halved 6 times from
 // `step`): where a Laplacian move cannot lift a poor element (a quad split from a sliver, or folded
 // next to a chord's midpoint) a move towards no particular point often can. Keeps the best position
@@ -146,9 +149,12 @@ double worst_of(const DomainMesh& m, const std::vector<size_t>& es) {
 // quad's expense would break the quads' bar).
 void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step, double floor) {
   double best = worst_of(m, around);
-  std::vector<size_t> held;  // the quads at or above the floor
+  // A folded element (or one not convex in UV) is worse than any valid one: while one is around, the
+  // quads at the floor may go below it, as long as none of them folds.
+  const double keep = best > 0 ? floor : kUnfoldedFloor;
+  std::vector<size_t> held;  // the quads at or above `keep`
   for (size_t e : around)
-    if (m.elements[4 * e + 3] >= 0 && element_quality(m, e) >= floor) held.push_back(e);
+    if (m.elements[4 * e + 3] >= 0 && element_quality(m, e) >= keep) held.push_back(e);
   P2 best_uv = m.uv[i];
   Vec3 best_xyz = m.xyz[i], best_normal = m.normal[i];
   for (int level = 0; level < 6; ++level, step *= 0.5)
@@ -158,13 +164,15 @@ void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::v
       if (!map.lift(m.uv[i], x, &nrm)) continue;
       m.xyz[i] = x, m.normal[i] = nrm;
       const double w = worst_of(m, around);
-      if (w > best + 1e-12 && !(worst_of(m, held) < floor)) best = w, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
+      if (w > best + 1e-12 && !(worst_of(m, held) < keep)) best = w, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
     }
   m.uv[i] = best_uv, m.xyz[i] = best_xyz, m.normal[i] = best_normal;
 }
 
 // Nodes whose worst element stays below this after the Laplacian move get a compass search.
 constexpr double kSearchBelow = 0.3;
+// Rounds of compass search over the nodes of folded elements and their neighbours, after the passes.
+constexpr int kUnfoldRounds = 8;
 
 }  // namespace
 
@@ -186,6 +194,11 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
   }
+  auto search = [&](size_t i) {
+    double reach = 0;
+    for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
+    compass_search(m, map, i, around[i], 0.25 * reach / static_cast<double>(neighbours[i].size()), kSearchBelow);
+  };
   for (int pass = 0; pass < passes; ++pass) {
     for (size_t i = static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0)); i < n; ++i) {
       if (neighbours[i].empty()) continue;
@@ -218,12 +231,20 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
         }
       }
       if (!kept) m.uv[i] = uv0, m.xyz[i] = xyz0, m.normal[i] = normal0;
-      if (worst_of(m, around[i]) < kSearchBelow) {
-        double reach = 0;
-        for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
-        compass_search(m, map, i, around[i], 0.25 * reach / static_cast<double>(neighbours[i].size()), kSearchBelow);
-      }
+      if (worst_of(m, around[i]) < kSearchBelow) search(i);
     }
+  }
+  // What the passes left folded: rounds of search over the nodes of folded elements, then their
+  // neighbours (a folded quad can need a neighbour moved first), while any is left.
+  for (int round = 0; passes > 0 && round < kUnfoldRounds; ++round) {
+    std::vector<size_t> folded;
+    for (size_t i = static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0)); i < n; ++i)
+      if (!neighbours[i].empty() && !(worst_of(m, around[i]) > 0)) folded.push_back(i);
+    if (folded.empty()) break;
+    for (size_t i : folded) search(i);
+    for (size_t i : folded)
+      for (Index j : neighbours[i])
+        if (static_cast<size_t>(j) >= static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0))) search(static_cast<size_t>(j));
   }
 }
 
