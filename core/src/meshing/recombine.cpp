@@ -194,13 +194,14 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
   }
+  const size_t first_free = static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0));  // boundary nodes stay
   auto search = [&](size_t i) {
     double reach = 0;
     for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
     compass_search(m, map, i, around[i], 0.25 * reach / static_cast<double>(neighbours[i].size()), kSearchBelow);
   };
   for (int pass = 0; pass < passes; ++pass) {
-    for (size_t i = static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0)); i < n; ++i) {
+    for (size_t i = first_free; i < n; ++i) {
       if (neighbours[i].empty()) continue;
       double worst = 2, sum = 0;
       for (size_t e : around[i]) {
@@ -238,13 +239,13 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
   // neighbours (a folded quad can need a neighbour moved first), while any is left.
   for (int round = 0; passes > 0 && round < kUnfoldRounds; ++round) {
     std::vector<size_t> folded;
-    for (size_t i = static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0)); i < n; ++i)
+    for (size_t i = first_free; i < n; ++i)
       if (!neighbours[i].empty() && !(worst_of(m, around[i]) > 0)) folded.push_back(i);
     if (folded.empty()) break;
     for (size_t i : folded) search(i);
     for (size_t i : folded)
       for (Index j : neighbours[i])
-        if (static_cast<size_t>(j) >= static_cast<size_t>(std::max<Index>(m.boundary_nodes, 0))) search(static_cast<size_t>(j));
+        if (static_cast<size_t>(j) >= first_free) search(static_cast<size_t>(j));
   }
 }
 
