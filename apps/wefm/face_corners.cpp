@@ -8,8 +8,6 @@ namespace wefm_cli {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 const double* at(const wefm_cad::CadFace& f, int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; }
 
 // An edge use's chain of face vertices in the loop's direction.
@@ -62,7 +60,7 @@ std::vector<FaceCorner> face_corners(const wefm_cad::CadFace& f) {
       const double cross = (a[1] * b[2] - a[2] * b[1]) * n[0] + (a[2] * b[0] - a[0] * b[2]) * n[1] + (a[0] * b[1] - a[1] * b[0]) * n[2];
       const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(nn > 0)) continue;
-      const double angle = 180 - std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * 180 / kPi;
+      const double angle = 180 - degrees(std::atan2(cross / nn, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]));
       out.push_back({angle, {f.edges[static_cast<size_t>(loop[k].edge)].id, f.edges[static_cast<size_t>(loop[next].edge)].id}, in.back(), l, k});
     }
   }

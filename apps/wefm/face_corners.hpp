@@ -11,6 +11,9 @@
 
 namespace wefm_cli {
 
+// Radians to degrees, the unit of a face's corners and of the turns between faces.
+inline double degrees(double radians) { return radians * 180 / 3.14159265358979323846; }
+
 // The unit normal of facet t (counter-clockwise seen from outside); zero for a degenerate facet.
 std::array<double, 3> facet_normal(const wefm_cad::CadFace& f, size_t t);
 

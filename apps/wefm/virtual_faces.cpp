@@ -40,7 +40,6 @@ constexpr double kSharpDegrees = 50;
 // leave the surface by up to h / 2 sin(turn / 2), h / 8 at this turn: the chord deviation that the
 // local size allows on a curved face (h at most its radius, h^2 / 8r).
 constexpr double kCornerSharpDegrees = 30;
-constexpr double kPi = 3.14159265358979323846;
 // A face with a corner sharper than this (degrees, inside the face) is merged with the neighbour
 // across one of the corner's edges: a triangle in a corner of angle t has Lo lambda at most
 // 2 sqrt(3) sin t / (2 + 4 sin^2(t / 2)), 0.30 at 10.5 degrees, whatever the sizes.
@@ -85,7 +84,7 @@ double dihedral(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& 
     if (ia == fa.end() || ib == fb.end()) return 180;
     const Normal na = facet_normal(a, ia->second), nb = facet_normal(b, ib->second);
     const double c = std::clamp(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2], -1.0, 1.0);
-    worst = std::max(worst, std::acos(c) * 180 / kPi);
+    worst = std::max(worst, degrees(std::acos(c)));
   }
   return worst;
 }
