@@ -33,7 +33,7 @@ std::vector<OptionSpec> mesh_specs() {
       {"type", 0, "free|transfinite|auto", "free triangles, a transfinite (mapped) mesh on four corners, or transfinite where "
                                            "the domain is four-sided (four corners of 30 to 150 degrees, other turns under 20) "
                                            "and its grid's worst quad has a scaled Jacobian of 0.3 or more, else free", "free", false},
-      {"corners", 0, "U0,U1,U2,U3", "transfinite corners: vertex uses on the outer loop (default: the four sharpest)", "",
+      {"corners", 0, "U0,U1,U2,U3", "transfinite and auto corners: vertex uses on the outer loop (default: the four sharpest; auto: the four it finds)", "",
        false},
       {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
       {"elements", 0, "tri|quad-dominant|quad", "free: triangles; quads where pairs of triangles make good ones (scaled Jacobian >= 0.3); or all quads (each element split at its edge midpoints and centre: sides about H / 2; a transfinite grid halved both ways)", "tri", false},
@@ -411,6 +411,13 @@ nlohmann::json report_json(const MeshRequest& q, const MeshRun& run, double t_me
   j["input"] = q.input;
   j["type"] = r.transfinite ? "transfinite" : "free";
   j["type_asked"] = q.mesh.type == WEFM_MESH_TRANSFINITE ? "transfinite" : q.mesh.type == WEFM_MESH_AUTO ? "auto" : "free";
+  if (q.mesh.type == WEFM_MESH_AUTO) {
+    // Why auto made a free mesh (null where it made the grid), and the refused grid's worst quad.
+    static const char* const kWhy[] = {nullptr, "not four-sided", "grid refused", "poor grid"};
+    const int why = r.automatic_fallback;
+    j["automatic_fallback"] = why > 0 && why < 4 ? nlohmann::json(kWhy[why]) : nlohmann::json(nullptr);
+    if (why == WEFM_FALLBACK_POOR_GRID) j["refused_grid_scaled_jacobian_min"] = r.refused_grid_scaled_jacobian_min;
+  }
   j["size"] = q.mesh.size;
   j["flatten"] = {{"s", q.settings.options.s}, {"boundary_weight", q.settings.options.boundary_weight},
                   {"score", run.flatten_report.score}, {"converged", run.flatten_report.converged != 0}, {"time", run.time_solve}};

@@ -154,10 +154,6 @@ Json defect_edges_json(const ConformityCounts& conf) {
   return out;
 }
 
-// A face mapped because it was found four-sided (not named by the caller) is meshed free instead
-// where its grid's worst quad has a scaled Jacobian below this: issue 32's floor for quads.
-constexpr double kMappedQuadFloor = 0.3;
-
 // One flattening of the face at `options` and its domain mesh, into r. `last`: no other s follows,
 // so a conformal domain that is unusable is meshed anyway (and fails or not as the mesher says).
 // `mapped` (or null): tried first, free where the library refuses it or its grid is below its floor.
@@ -765,8 +761,11 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
       MappedRequest mapped;
       mapped.options = tf_options;
       options.size = mapped.options.size = plan.face_sizes[i];
-      mapped.floor = map && !named && !plan.tubes.count(i) ? kMappedQuadFloor : 0;
-      mapped.most_elements = mapped.floor > 0 ? q.mapped_grid_limit : 0;
+      // A face found four-sided (not named, not a tube) keeps only a good grid: the library's
+      // automatic meshing judges it, on the corners found here.
+      const bool automatic = map && !named && !plan.tubes.count(i);
+      if (automatic) mapped.options.type = WEFM_MESH_AUTO;
+      mapped.most_elements = automatic ? q.mapped_grid_limit : 0;
       if (const auto c = plan.mapping.sides.find(i); c != plan.mapping.sides.end()) mapped.corner_vertices = c->second.corners;
       mesh_one_face(runs[i], q.settings, q.conformal_first, options, map ? &mapped : nullptr, plan.edge_nodes, watcher);
       return true;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "owned.hpp"
@@ -30,6 +31,20 @@ void set_corner_uses(wefm_face* face, const std::array<int32_t, 4>& corner_verti
   if (found.size() == 4) std::copy(found.begin(), found.end(), options.corners);
 }
 
+// Why WEFM_MESH_AUTO made its free mesh, from the report.
+std::string fallback_reason(const wefm_mesh_report& r) {
+  char text[160];
+  switch (r.automatic_fallback) {
+    case WEFM_FALLBACK_POOR_GRID:
+      std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below 0.3",
+                    r.refused_grid_scaled_jacobian_min);
+      return text;
+    case WEFM_FALLBACK_GRID_REFUSED: return "the library refused the grid (opposite sides with unlike node counts, or over max_elements)";
+    case WEFM_FALLBACK_NOT_FOUR_SIDED: return "the library found the domain not four-sided";
+    default: return "the library made a free mesh";
+  }
+}
+
 }  // namespace
 
 MappedOutcome mesh_mapped(wefm_face* face, const MappedRequest& request, const wefm_mesh_options& free_options, wefm_domain_mesh** out) {
@@ -47,9 +62,10 @@ MappedOutcome mesh_mapped(wefm_face* face, const MappedRequest& request, const w
     outcome.refused = wefm_face_last_error(face);
   } else if (wefm_domain_mesh_get_report(grid.get(), &g) != WEFM_OK) {
     outcome.refused = "no report of the grid";
-  } else if (request.floor > 0 && g.quads > 0 && g.scaled_jacobian_min < request.floor) {
-    std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below %g", g.scaled_jacobian_min, request.floor);
-    outcome.refused = text;
+  } else if (!g.transfinite) {  // WEFM_MESH_AUTO's own free mesh
+    outcome.refused = fallback_reason(g);
+    *out = grid.release();
+    return outcome;
   } else if (!(request.most_elements > 0)) {
     outcome.transfinite = true;
     *out = grid.release();

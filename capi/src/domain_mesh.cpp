@@ -146,6 +146,8 @@ WEFM_API wefm_status wefm_domain_mesh_get_report(const wefm_domain_mesh* mesh, w
     r.quads = s.quads;
     r.quad_area_fraction = s.quad_area_fraction;
     r.transfinite = s.transfinite ? 1 : 0;
+    r.automatic_fallback = static_cast<int32_t>(s.automatic_fallback);
+    r.refused_grid_scaled_jacobian_min = s.refused_grid_scaled_jacobian_min;
     wefm::capi::write_versioned(report, r);
   });
 }

@@ -697,6 +697,42 @@ static void test_mapping_and_meshing(const char* work_dir) {
     EXPECT(WEFM_OK, wefm_domain_mesh_write_obj(dm, path));
     wefm_domain_mesh_release(dm);
   }
+
+  /* WEFM_MESH_AUTO: the square's grid, and why not where the caller's corners make a poor one (the
+   * first four uses of the outer loop from a corner: three on one side). */
+  {
+    int32_t loop = -1, uses[64], use_vertex[9];
+    int64_t n_uses = 0, first = -1, k;
+    wefm_mesh_options_init(&mo, sizeof mo);
+    mo.size = 0.5;
+    mo.type = WEFM_MESH_AUTO;
+    dm = NULL;
+    EXPECT(WEFM_OK, wefm_face_mesh_domain(face, &mo, &dm));
+    wefm_mesh_report_init(&mr, sizeof mr);
+    EXPECT(WEFM_OK, wefm_domain_mesh_get_report(dm, &mr));
+    CHECK(mr.transfinite == 1 && mr.automatic_fallback == WEFM_FALLBACK_NONE && mr.nodes_per_element == 4);
+    wefm_domain_mesh_release(dm);
+    EXPECT(WEFM_OK, wefm_face_outer_loop(face, &loop));
+    EXPECT(WEFM_OK, wefm_face_get_loop_uses(face, loop, uses, 64, &n_uses));
+    EXPECT(WEFM_OK, wefm_face_get_use_vertices(face, use_vertex, 9, &count));
+    for (k = 0; k < n_uses && first < 0; ++k)
+      if (use_vertex[uses[k]] == 0) first = k; /* vertex 0 is a corner of the square */
+    CHECK(n_uses == 8 && first >= 0);
+    if (n_uses == 8 && first >= 0) {
+      for (k = 0; k < 4; ++k) mo.corners[k] = uses[(first + k) % n_uses];
+      dm = NULL;
+      EXPECT(WEFM_OK, wefm_face_mesh_domain(face, &mo, &dm));
+      wefm_mesh_report_init(&mr, sizeof mr);
+      EXPECT(WEFM_OK, wefm_domain_mesh_get_report(dm, &mr));
+      CHECK(mr.transfinite == 0 && mr.automatic_fallback == WEFM_FALLBACK_POOR_GRID && mr.refused_grid_scaled_jacobian_min < 0.3);
+      CHECK(mr.nodes_per_element == 3 && mr.lambda_min > 0);
+      wefm_domain_mesh_release(dm);
+      mo.corners[3] = 1000; /* not a use of the outer loop */
+      dm = (wefm_domain_mesh*)&face;
+      EXPECT(WEFM_ERROR_INVALID_ARGUMENT, wefm_face_mesh_domain(face, &mo, &dm));
+      CHECK(dm == NULL);
+    }
+  }
   wefm_face_release(face);
 }
 

@@ -567,6 +567,7 @@ def case_mesh(tmp):
     run("mesh", src, "--topology", topo, "--size", chord, "--type", "auto", "-o", aout, "--report", arep, "--s", 0, "-q", expect=0)
     a = json.load(open(arep))
     check(a["type"] == "transfinite" and a["type_asked"] == "auto" and read_faces(aout)[1] == MF, f"auto: {a['type']}, {a['mesh']}")
+    check(a["automatic_fallback"] is None and "refused_grid_scaled_jacobian_min" not in a, f"auto's fallback: {a}")
     # Free meshing of a curved patch, with the picture.
     PV, PT = meshes.patch(9, 7)
     psrc, pout, prep, psvg = (os.path.join(tmp, n) for n in ("patch.obj", "patch_mesh.obj", "patch.json", "patch.svg"))

@@ -1,6 +1,7 @@
 // Transfinite meshing (METHOD §9): exact on developable four-sided domains.
 #include "mesh_faces.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
+#include "wefm/core/meshing/transfinite.hpp"
 
 using namespace wefm;
 
@@ -134,7 +135,8 @@ TEST_CASE("all-quad transfinite halves the grid both ways: the old nodes kept, t
   CHECK(fine.report.scaled_jacobian_min > 0.5);
 }
 
-TEST_CASE("automatic meshing: a grid on a four-sided domain, a free mesh on any other, never an error for unlike sides") {
+TEST_CASE("automatic meshing: a grid on a four-sided domain, a free mesh on any other with the reason, never an error for unlike sides") {
+  using meshing::AutomaticFallback;
   meshing::MeshOptions o;
   o.type = meshing::MeshType::Automatic;
   o.size = 0.1;
@@ -142,6 +144,7 @@ TEST_CASE("automatic meshing: a grid on a four-sided domain, a free mesh on any 
   const auto square = test::solved(test::unit_square(8));
   const auto grid = square.mesh_domain(o);
   CHECK(grid.report.transfinite);
+  CHECK(grid.report.automatic_fallback == AutomaticFallback::None);
   CHECK(grid.nodes_per_element == 4);
   CHECK(grid.report.elements == 100);
   CHECK(grid.report.scaled_jacobian_min == doctest::Approx(1.0).epsilon(1e-12));
@@ -157,6 +160,7 @@ TEST_CASE("automatic meshing: a grid on a four-sided domain, a free mesh on any 
   for (const TriMesh& m : {test::disk_with_holes(), disk}) {
     const auto free = test::solved(m).mesh_domain(o);
     CHECK_FALSE(free.report.transfinite);
+    CHECK(free.report.automatic_fallback == AutomaticFallback::NotFourSided);
     CHECK(free.nodes_per_element == 3);
     CHECK(free.report.lambda_min > 0.3);
   }
@@ -165,8 +169,48 @@ TEST_CASE("automatic meshing: a grid on a four-sided domain, a free mesh on any 
   given[0] = {Vec3(0.1, 0, 0), Vec3(0.3, 0, 0), Vec3(0.7, 0, 0), Vec3(1, 0.5, 0), Vec3(0.5, 1, 0), Vec3(0.2, 1, 0), Vec3(0, 0.5, 0)};
   const auto unlike = test::solved(test::unit_square(4)).mesh_domain(o, given);
   CHECK_FALSE(unlike.report.transfinite);
+  CHECK(unlike.report.automatic_fallback == AutomaticFallback::GridRefused);
   CHECK(unlike.report.elements > 0);
-  // Given corners are the transfinite type's, not the automatic one's.
-  o.corners = {0, 1, 2, 3};
-  CHECK(square.mesh_domain(o).report.elements == 100);
+}
+
+TEST_CASE("automatic meshing honours the caller's corners: the grid on them where it is good, else the free mesh and the grid's worst quad") {
+  using meshing::AutomaticFallback;
+  const auto square = test::solved(test::unit_square(8));
+  const auto& loop = square.topo().loop_uses[static_cast<size_t>(square.topo().outer_loop)];
+  const auto found = meshing::four_corners(square.topo(), square.uv());
+  REQUIRE(found);
+  meshing::MeshOptions o;
+  o.type = meshing::MeshType::Automatic;
+  o.size = 0.1;
+  // The square's own corners, given from the second: the same grid, its first corner moved.
+  for (size_t k = 0; k < 4; ++k) o.corners[k] = loop[(*found)[(k + 1) % 4]];
+  const auto grid = square.mesh_domain(o);
+  CHECK(grid.report.transfinite);
+  CHECK(grid.report.elements == 100);
+  CHECK(grid.report.scaled_jacobian_min == doctest::Approx(1.0).epsilon(1e-12));
+  // Four corners on one side, given: the grid on them folds at the square's corners (the detected
+  // corners would never be these), so the free mesh is made, and the report says why.
+  const size_t first = (*found)[0];
+  for (size_t k = 0; k < 4; ++k) o.corners[k] = loop[(first + k) % loop.size()];
+  const auto poor = square.mesh_domain(o);
+  CHECK_FALSE(poor.report.transfinite);
+  CHECK(poor.report.automatic_fallback == AutomaticFallback::PoorGrid);
+  CHECK(poor.report.refused_grid_scaled_jacobian_min < 0.3);
+  CHECK(poor.nodes_per_element == 3);
+  CHECK(poor.report.lambda_min > 0.3);
+  // Corners given on a face with holes: not four-sided, the free mesh.
+  const auto holes = test::solved(test::disk_with_holes());
+  const auto& hloop = holes.topo().loop_uses[static_cast<size_t>(holes.topo().outer_loop)];
+  for (size_t k = 0; k < 4; ++k) o.corners[k] = hloop[k * hloop.size() / 4];
+  const auto free = holes.mesh_domain(o);
+  CHECK_FALSE(free.report.transfinite);
+  CHECK(free.report.automatic_fallback == AutomaticFallback::NotFourSided);
+  // Corners that are not uses of the outer loop: an error, as for a transfinite mesh.
+  o.corners = {loop[0], loop[1], loop[2], 1 << 30};
+  try {
+    square.mesh_domain(o);
+    FAIL("expected Error(invalid_argument)");
+  } catch (const Error& e) {
+    CHECK(e.code() == Errc::invalid_argument);
+  }
 }

@@ -124,6 +124,8 @@ program struct_layout
   call at('wefm_mesh_report quads', c_loc(v4), c_loc(v4%quads))
   call at('wefm_mesh_report quad_area_fraction', c_loc(v4), c_loc(v4%quad_area_fraction))
   call at('wefm_mesh_report transfinite', c_loc(v4), c_loc(v4%transfinite))
+  call at('wefm_mesh_report automatic_fallback', c_loc(v4), c_loc(v4%automatic_fallback))
+  call at('wefm_mesh_report refused_grid_scaled_jacobian_min', c_loc(v4), c_loc(v4%refused_grid_scaled_jacobian_min))
 
 contains
 

@@ -106,3 +106,16 @@ def test_quad_dominant_and_all_quad_meshes(tmp_path):
                     e = tuple(sorted((q[k], q[(k + 1) % 4])))
                     edges[e] = edges.get(e, 0) + 1
             assert set(edges.values()) == {1, 2}
+
+
+def test_auto_reports_why_it_made_a_free_mesh():
+    with wefm.Face(*flat_square(4)) as f:
+        f.solve()
+        with f.mesh_domain(size=0.125, type="auto") as dm:
+            assert dm.report.transfinite == 1 and dm.report.automatic_fallback == wefm.FALLBACK_NONE
+        # Corners that are not uses of the outer loop: an error, as for a transfinite mesh.
+        try:
+            f.mesh_domain(size=0.125, type="auto", corners=(0, 1, 2, 10 ** 6))
+            raise AssertionError("bad corners accepted")
+        except wefm.InvalidArgumentError:
+            pass

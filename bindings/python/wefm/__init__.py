@@ -6,7 +6,8 @@ a source checkout, or the system search path (see wefm._loader).
 from . import _structs
 from ._api import lib as _lib
 from ._records import MeshInfo, MeshReport, Report
-from ._structs import (EDGE_AUTO, EDGE_FREE, EDGE_PERIODIC, EDGE_ROTATIONAL, EDGE_SCAR, MESH_AUTO, MESH_FREE,
+from ._structs import (EDGE_AUTO, EDGE_FREE, EDGE_PERIODIC, EDGE_ROTATIONAL, EDGE_SCAR, FALLBACK_GRID_REFUSED,
+                       FALLBACK_NONE, FALLBACK_NOT_FOUR_SIDED, FALLBACK_POOR_GRID, MESH_AUTO, MESH_FREE,
                        MESH_TRANSFINITE, METHOD_GLOBAL, METHOD_ROLLOUT, SOLVER_AUTO, SOLVER_CHOLMOD,
                        SOLVER_EIGEN)
 from ._version import FALLBACK_VERSION

@@ -62,6 +62,12 @@ MESH_FREE = 0
 MESH_TRANSFINITE = 1
 MESH_AUTO = 2
 
+# wefm_automatic_fallback
+FALLBACK_NONE = 0
+FALLBACK_NOT_FOUR_SIDED = 1
+FALLBACK_GRID_REFUSED = 2
+FALLBACK_POOR_GRID = 3
+
 # wefm_elements
 ELEMENTS_TRIANGLES = 0
 ELEMENTS_QUAD_DOMINANT = 1
@@ -199,6 +205,8 @@ class MeshReport(ctypes.Structure):
         ("quads", c_int64),
         ("quad_area_fraction", c_double),
         ("transfinite", c_int32),
+        ("automatic_fallback", c_int32),
+        ("refused_grid_scaled_jacobian_min", c_double),
     ]
 
 

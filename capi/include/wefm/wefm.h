@@ -735,13 +735,26 @@ typedef enum wefm_mesh_type {
   WEFM_MESH_TRANSFINITE = 1, /**< Coons patch on four corners, quads (or split triangles); with edge nodes set
                                   (wefm_face_set_edge_nodes) the sides carry those nodes and opposite sides
                                   must have as many (else WEFM_ERROR_UNSUPPORTED) */
-  WEFM_MESH_AUTO = 2         /**< transfinite where the domain is four-sided (one loop; four vertices where its
-                                  boundary turns left by 30 to 150 degrees, every other turn under 20) and
-                                  the grid's worst quad has a scaled Jacobian of at least 0.3, on those four
-                                  corners (`corners` ignored); else free. wefm_mesh_report.transfinite says
-                                  which. Opposite sides with unlike counts of caller nodes, or a grid over
-                                  max_elements, give the free mesh, not an error */
+  WEFM_MESH_AUTO = 2         /**< transfinite on `corners` where the caller gives them (a face with holes is
+                                  not four-sided), else where the domain is four-sided (one loop; four
+                                  vertices where its boundary turns left by 30 to 150 degrees, every other
+                                  turn under 20), if the grid's worst quad has a scaled Jacobian of at least
+                                  0.3; else free. wefm_mesh_report.transfinite says which, and
+                                  automatic_fallback why not. Opposite sides with unlike counts of caller
+                                  nodes, or a grid over max_elements, give the free mesh, not an error;
+                                  corners that are not four distinct uses of the outer loop are an error
+                                  (WEFM_ERROR_INVALID_ARGUMENT) */
 } wefm_mesh_type;
+
+/** wefm_mesh_report.automatic_fallback: why WEFM_MESH_AUTO made a free mesh. */
+typedef enum wefm_automatic_fallback {
+  WEFM_FALLBACK_NONE = 0,            /**< it made the grid, or WEFM_MESH_AUTO was not asked for */
+  WEFM_FALLBACK_NOT_FOUR_SIDED = 1,  /**< no corners given and the domain is not four-sided, or holes */
+  WEFM_FALLBACK_GRID_REFUSED = 2,    /**< the transfinite mesher refused the grid: opposite sides with
+                                          unlike counts of caller nodes, or more than max_elements */
+  WEFM_FALLBACK_POOR_GRID = 3        /**< the grid's worst quad was below a scaled Jacobian of 0.3
+                                          (refused_grid_scaled_jacobian_min) */
+} wefm_automatic_fallback;
 
 /** wefm_mesh_options.elements: the elements of a free mesh. */
 typedef enum wefm_elements {
@@ -762,7 +775,7 @@ typedef struct wefm_mesh_options {
   size_t struct_size;
   int type;                  /**< wefm_mesh_type. Default FREE */
   double size;               /**< target 3D element size h (> 0). Required */
-  int32_t corners[4];        /**< transfinite corners as vertex uses on the outer loop, -1 = detect. Default -1 */
+  int32_t corners[4];        /**< transfinite and automatic corners as vertex uses on the outer loop, -1 = detect. Default -1 */
   int quads;                 /**< transfinite: non-zero writes quads, zero splits each into two triangles. Default 1 */
   int smoothing_iterations;  /**< free meshes: smoothing passes accepted only if 3D quality improves, then min(this, 3) passes optimising sum log lambda. Default 5 */
   double corner_angle_deg;   /**< loop vertices turning more than this are kept as nodes. Default 30 */
@@ -791,6 +804,9 @@ typedef struct wefm_mesh_report {
   double quad_area_fraction;     /**< the quads' share of the mesh's 3D area */
   int32_t transfinite;           /**< non-zero: a transfinite grid (WEFM_MESH_TRANSFINITE, or chosen by
                                       WEFM_MESH_AUTO); zero: a free mesh */
+  int32_t automatic_fallback;    /**< wefm_automatic_fallback: why WEFM_MESH_AUTO made a free mesh */
+  double refused_grid_scaled_jacobian_min;  /**< WEFM_FALLBACK_POOR_GRID: the worst quad of the grid not
+                                                 kept; else 0 */
 } wefm_mesh_report;
 
 /** Fill `options` with the defaults (size must still be set); `struct_size` as for wefm_options_init(). */

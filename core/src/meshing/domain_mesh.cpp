@@ -1,5 +1,6 @@
 #include "wefm/core/meshing/domain_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -53,16 +54,31 @@ void mesh_free(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, co
 // mesh is better for a solver.
 constexpr double kAutomaticGridFloor = 0.3;
 
-// MeshType::Automatic: the transfinite grid on the domain's four corners where it has them and the
-// grid is good (kAutomaticGridFloor), else the free mesh. A grid the transfinite mesher refuses
-// (opposite sides with unlike counts of caller nodes, more elements than max_elements) is not an
-// error here: the free mesh has its own say.
+// MeshType::Automatic: the transfinite grid on the caller's corners, or else on the domain's four
+// corners where it has them, where the grid is good (kAutomaticGridFloor); else the free mesh, with
+// the reason in the report. A grid the transfinite mesher refuses (a face with holes, opposite sides
+// with unlike counts of caller nodes, more elements than max_elements) is not an error here: the free
+// mesh has its own say. Corners that are not four distinct uses of the outer loop are an error, as
+// for a transfinite mesh.
 void mesh_automatic(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, const SurfaceMap& map, const MeshOptions& o,
                     const EdgeNodes& given, double estimate, const MeshControl& control, DomainMesh& out) {
-  if (const auto c = four_corners(topo, uv)) {
-    MeshOptions grid = o;
-    grid.type = MeshType::Transfinite;
+  MeshOptions grid = o;
+  grid.type = MeshType::Transfinite;
+  bool four_sided = false;
+  if (std::any_of(o.corners.begin(), o.corners.end(), [](Index c) { return c >= 0; })) {
+    try {
+      transfinite_corners(topo, uv, o.corners);
+      four_sided = true;
+    } catch (const Error& e) {
+      if (e.code() != Errc::unsupported) throw;
+    }
+  } else if (const auto c = four_corners(topo, uv)) {
     for (size_t k = 0; k < 4; ++k) grid.corners[k] = topo.loop_uses[static_cast<size_t>(topo.outer_loop)][(*c)[k]];
+    four_sided = true;
+  }
+  AutomaticFallback why = AutomaticFallback::NotFourSided;
+  double grid_worst = 0;
+  if (four_sided) {
     try {
       DomainMesh trial;
       transfinite_mesh(mesh, topo, uv, map, grid, given, trial);
@@ -71,11 +87,16 @@ void mesh_automatic(const TriMesh& mesh, const Topology& topo, const VectorXc& u
         out = std::move(trial);
         return;
       }
+      why = AutomaticFallback::PoorGrid;
+      grid_worst = trial.report.scaled_jacobian_min;
     } catch (const Error& e) {
       if (e.code() != Errc::unsupported && e.code() != Errc::invalid_argument) throw;
+      why = AutomaticFallback::GridRefused;
     }
   }
   mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
+  out.report.automatic_fallback = why;
+  out.report.refused_grid_scaled_jacobian_min = grid_worst;
 }
 
 }  // namespace

@@ -119,5 +119,7 @@ int main(void) {
   FIELD(wefm_mesh_report, quads);
   FIELD(wefm_mesh_report, quad_area_fraction);
   FIELD(wefm_mesh_report, transfinite);
+  FIELD(wefm_mesh_report, automatic_fallback);
+  FIELD(wefm_mesh_report, refused_grid_scaled_jacobian_min);
   return 0;
 }

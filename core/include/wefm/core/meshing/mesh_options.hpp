@@ -26,6 +26,9 @@ struct MeshOptions {
   Elements elements = Elements::Triangles;
 };
 
+// Why MeshType::Automatic made a free mesh: None where it made the grid (or was not asked).
+enum class AutomaticFallback : int { None = 0, NotFourSided = 1, GridRefused = 2, PoorGrid = 3 };
+
 struct MeshReport {
   std::int64_t nodes = 0, elements = 0;
   int nodes_per_element = 3;
@@ -37,6 +40,8 @@ struct MeshReport {
   double quad_area_fraction = 0;        // their share of the mesh's 3D area
   std::int64_t outside_nodes = 0;  // nodes whose UV fell outside the solved domain (mapped to the nearest point)
   bool transfinite = false;        // the mesh is a transfinite grid (asked for, or chosen by Automatic)
+  AutomaticFallback automatic_fallback = AutomaticFallback::None;
+  double refused_grid_scaled_jacobian_min = 0;  // PoorGrid: the worst quad of the grid not kept
 };
 
 }  // namespace wefm::meshing
