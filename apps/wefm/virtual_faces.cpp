@@ -62,26 +62,34 @@ uint64_t pair_key(int32_t a, int32_t b) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
 }
 
-// Facet edge (unordered vertex pair) -> a facet having it.
-std::unordered_map<uint64_t, size_t> facet_of_edge(const wefm_cad::CadFace& f) {
+constexpr size_t kNoFacet = static_cast<size_t>(-1);
+
+// Per segment of `chain` (a pair of consecutive vertices): the first facet of f having it as an edge,
+// or kNoFacet. Only the chain's segments are kept: a face absorbs narrow faces one after the other,
+// and each time its chains are looked up again.
+std::unordered_map<uint64_t, size_t> facets_along(const wefm_cad::CadFace& f, const std::vector<int32_t>& chain) {
   std::unordered_map<uint64_t, size_t> out;
+  for (size_t k = 0; k + 1 < chain.size(); ++k) out.emplace(pair_key(chain[k], chain[k + 1]), kNoFacet);
   for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
-    for (size_t c = 0; c < 3; ++c) out.emplace(pair_key(f.triangles[3 * t + c], f.triangles[3 * t + (c + 1) % 3]), t);
+    for (size_t c = 0; c < 3; ++c) {
+      const auto it = out.find(pair_key(f.triangles[3 * t + c], f.triangles[3 * t + (c + 1) % 3]));
+      if (it != out.end() && it->second == kNoFacet) it->second = t;
+    }
   return out;
 }
 
 // The largest angle, in degrees, between the facet normals of a and b along the chain of edge
 // index ea of a and eb of b (the same model edge); 180 when a segment has no facet on one side.
 double dihedral(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& b, size_t eb, bool reversed) {
-  const auto fa = facet_of_edge(a), fb = facet_of_edge(b);
   const auto& ca = a.edges[ea].vertices;
   const auto& cb = b.edges[eb].vertices;
+  const auto fa = facets_along(a, ca), fb = facets_along(b, cb);
   const size_t n = ca.size();
   double worst = 0;
   for (size_t k = 0; k + 1 < n; ++k) {
     const size_t kb = reversed ? n - 1 - k : k, kb1 = reversed ? n - 2 - k : k + 1;
     const auto ia = fa.find(pair_key(ca[k], ca[k + 1])), ib = fb.find(pair_key(cb[kb], cb[kb1]));
-    if (ia == fa.end() || ib == fb.end()) return 180;
+    if (ia == fa.end() || ib == fb.end() || ia->second == kNoFacet || ib->second == kNoFacet) return 180;
     const Normal na = facet_normal(a, ia->second), nb = facet_normal(b, ib->second);
     const double c = std::clamp(na[0] * nb[0] + na[1] * nb[1] + na[2] * nb[2], -1.0, 1.0);
     worst = std::max(worst, degrees(std::acos(c)));
