@@ -95,6 +95,7 @@ void mesh_automatic(const TriMesh& mesh, const Topology& topo, const VectorXc& u
     }
   }
   mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
+  measure_quality(out);
   out.report.automatic_fallback = why;
   out.report.refused_grid_scaled_jacobian_min = grid_worst;
 }
@@ -127,15 +128,19 @@ DomainMesh mesh_domain(const TriMesh& mesh, const Topology& topo, const VectorXc
   control.check(0.0);
   DomainMesh out;
   const SurfaceMap map(mesh, topo, uv);
-  if (o.type == MeshType::Transfinite) transfinite_mesh(mesh, topo, uv, map, o, given, out);
-  else if (o.type == MeshType::Automatic) mesh_automatic(mesh, topo, uv, map, o, given, estimate, control, out);
-  else mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
+  // Each way ends measured (Automatic measures the grid to judge it).
+  if (o.type == MeshType::Automatic) {
+    mesh_automatic(mesh, topo, uv, map, o, given, estimate, control, out);
+  } else {
+    if (o.type == MeshType::Transfinite) transfinite_mesh(mesh, topo, uv, map, o, given, out);
+    else mesh_free(mesh, topo, uv, map, o, given, estimate, control, out);
+    measure_quality(out);
+  }
   // A node the mapping could not place (NaN from the mesher) would reach the caller as garbage.
   for (size_t k = 0; k < out.uv.size(); ++k)
     if (!out.uv[k].allFinite() || !out.xyz[k].allFinite())
       fail(Errc::internal, "domain mesh node " + std::to_string(k) + " has a non-finite position (UV " + message_number(out.uv[k].x()) + ", " +
                                message_number(out.uv[k].y()) + ")");
-  measure_quality(out);
   control.check(1.0);
   return out;
 }
