@@ -882,6 +882,15 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
     const ModelMesh::QuadStats qs = whole.quads();
     std::printf("quads: %lld written, %.1f%% of the area; scaled Jacobian min %.4f, mean %.4f (the triangles above are the quads' halves)\n",
                 static_cast<long long>(qs.quads), 100 * qs.area_fraction, qs.scaled_jacobian_min, qs.scaled_jacobian_mean);
+    // A folded quad is written as it is (the model still conforms) but a solver may refuse it: said
+    // even with -q.
+    if (qs.folded > 0) {
+      std::string where;
+      for (size_t k = 0; k < qs.folded_faces.size() && k < 10; ++k) where += (k ? ", f" : "f") + std::to_string(qs.folded_faces[k]);
+      if (qs.folded_faces.size() > 10) where += ", ...";
+      std::fprintf(stderr, "wefm: warning: %lld quads folded or degenerate (scaled Jacobian 0 or less) on %zu faces (%s)\n",
+                   static_cast<long long>(qs.folded), qs.folded_faces.size(), where.c_str());
+    }
   }
   if (!plan.mapping.faces.empty() || plan.mapping.four_sided) {
     const MappedCounts m = mapped_counts(plan, runs);
@@ -938,7 +947,7 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
     // Counts and lambda above are of the triangles the quads were split into (the welded mesh).
     const ModelMesh::QuadStats qs = whole.quads();
     rep["quads"] = {{"quads", qs.quads}, {"area_fraction", qs.area_fraction}, {"scaled_jacobian_min", qs.scaled_jacobian_min},
-                    {"scaled_jacobian_mean", qs.scaled_jacobian_mean}};
+                    {"scaled_jacobian_mean", qs.scaled_jacobian_mean}, {"folded", qs.folded}, {"folded_faces", qs.folded_faces}};
   }
   const MappedCounts m = mapped_counts(plan, runs);
   rep["mapped"] = {{"candidates", m.candidates}, {"four_sided", m.four_sided}, {"mapped", m.mapped}, {"planned_free", m.planned_free}, {"meshed_free", m.meshed_free},

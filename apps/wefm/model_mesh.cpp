@@ -502,7 +502,13 @@ ModelMesh::QuadStats ModelMesh::quads() const {
     s.scaled_jacobian_min = std::min(s.scaled_jacobian_min, sj);
     sum += sj;
     ++s.quads;
+    if (!(sj > 0)) {
+      ++s.folded;
+      s.folded_faces.push_back(tags[e / 4]);
+    }
   }
+  std::sort(s.folded_faces.begin(), s.folded_faces.end());
+  s.folded_faces.erase(std::unique(s.folded_faces.begin(), s.folded_faces.end()), s.folded_faces.end());
   if (s.quads) s.scaled_jacobian_mean = sum / static_cast<double>(s.quads);
   else s.scaled_jacobian_min = 0;
   s.area_fraction = all > 0 ? quad_area / all : 0;

@@ -105,6 +105,8 @@ class ModelMesh {
   struct QuadStats {
     int64_t quads = 0;
     double area_fraction = 0, scaled_jacobian_min = 0, scaled_jacobian_mean = 0;
+    int64_t folded = 0;             // quads with a scaled Jacobian of 0 or less: folded or degenerate
+    std::vector<int> folded_faces;  // the faces (tags) holding them, in order
   };
   QuadStats quads() const;
   static LambdaStats lambda_of(const std::vector<double>& xyz, const std::vector<int32_t>& triangles);

@@ -20,9 +20,11 @@ merged with their neighbours), from the MSH itself:
   transfinite on the model's shared nodes, their elements all quads and the model still closed;
   with `--mapped named` only the tube is mapped (its strip is not four-sided's doing); with
   `--mapped-grid-limit 0.5` no grid is kept that has more than half the elements of the face's free mesh;
-- a bad value refused with exit 2 and a reason, no file written.
+- a bad value refused with exit 2 and a reason, no file written;
+- with CAD_MORE_DIR, gmsh_problemSphere.brep all-quad, whose mesh keeps folded quads (issue 32): the
+  report's `quads.folded` and `folded_faces` match the MSH, and a warning says so on stderr.
 
-usage: quad_dominant_test.py WEFM PIN_PLATE.brep BOX.brep
+usage: quad_dominant_test.py WEFM PIN_PLATE.brep BOX.brep [CAD_MORE_DIR]
 """
 import math
 import os
@@ -82,11 +84,30 @@ def check(wefm, model, tmp, name, kind="quad-dominant", *extra):
         c = report["conformity"]
         assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0, c
     assert min(sj) >= 0.3 and abs(q["scaled_jacobian_min"] - min(sj)) < 1e-9, (q, min(sj))
+    assert q["folded"] == 0 and q["folded_faces"] == [], q
     return report, faces, points
+
+
+def check_folded(wefm, model, tmp):
+    """A model whose all-quad mesh keeps folded quads: the report counts them and names their faces as
+    the MSH has them, and a warning says so, even with -q (the run still exits 0: the mesh conforms)."""
+    report, msh, stderr = mesh_model(wefm, model, tmp, "folded.quad", "--elements", "quad")
+    faces, points = read_msh_faces(msh, types=(3,))
+    folded = {f: sum(1 for e in es if scaled_jacobian([points[v] for v in e]) <= 0) for f, es in faces.items()}
+    folded = {f: n for f, n in folded.items() if n}
+    q = report["quads"]
+    print(f"{os.path.basename(model)}, quad: {q['folded']} folded quads on faces {q['folded_faces']}")
+    assert q["folded"] == sum(folded.values()) and q["folded_faces"] == sorted(folded), (q, folded)
+    assert q["folded"] > 0, "no folded quad left on this model: good news, but pick another to test the count and warning"
+    assert f"wefm: warning: {q['folded']} quads folded" in stderr, stderr
 
 
 def main():
     wefm, pin_plate, box = sys.argv[1:4]
+    sphere = os.path.join(sys.argv[4], "gmsh_problemSphere.brep") if len(sys.argv) > 4 else ""
+    if sphere and os.path.exists(sphere):
+        with tempfile.TemporaryDirectory() as tmp:
+            check_folded(wefm, sphere, tmp)
     with tempfile.TemporaryDirectory() as tmp:
         r, faces, points = check(wefm, pin_plate, tmp, "pin_plate")
         tube = next(f for f in r["faces"] if f["surface_type"] == "cylinder")
