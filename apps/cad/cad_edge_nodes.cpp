@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
+#include <utility>
 #include <unordered_map>
 
 #include "wefm/common/linear_size.hpp"
@@ -25,10 +27,21 @@ constexpr double kWidthFactor = 2.5;
 // one curve's points computed twice. Not the deflection itself: real gaps and slivers that thin
 // exist (a millimetre on a robot two metres across), and their faces are narrow.
 constexpr double kCoincident = 1e-6;
-// Edge segments shrink towards a narrow part of a face down to h / this: a local narrowing costs a
-// few segments (they grow back by g per unit length), a face that is a needle all along its length
-// keeps slivers.
-constexpr double kNarrowestEdgeFraction = 32;
+// Edge segments shrink towards a pinch of a face (a place narrower than kPinchFraction of the
+// face's width, 2 area / perimeter, as where a twisted blend's two sides nearly meet) down to
+// h / kNarrowestEdgeFraction: a pinch costs a few dozen segments, as they grow back by g per unit
+// length. Elsewhere only down to h / kNarrowestCornerFraction:
+// - beside a corner under 10 degrees shorter chords only narrow its triangles' angle, as they
+//   turn towards the edges' common tangent;
+// - a face narrow all along (under h / kNeedleRatio wide: one narrow-face merging could not take)
+//   would ask for thousands of segments along its length, and its tessellation's chords, which may
+//   sag by more than its width, do not tell its width;
+// - a face only somewhat narrower in places is graded by its width well enough.
+constexpr double kNarrowestEdgeFraction = 300;
+constexpr double kNarrowestCornerFraction = 32;
+constexpr double kPinchFraction = 0.25;
+constexpr double kPinchSegments = 50;
+constexpr double kNeedleRatio = 30;
 // A face at least this many times its smaller radius of curvature wide (2 area / perimeter) wraps
 // round it: a tube of radius r is about 2 pi r wide, a long half tube pi r, a quarter-round fillet
 // about 1.6 r. A short half tube is narrow too: it wraps by its normals (turns_little).
@@ -237,14 +250,15 @@ std::vector<std::array<double, 6>> edge_boxes(const CadFace& f, double reach) {
   return box;
 }
 
-// The width of the face at each sample of its edges, reported to `width_at`: the distance from a
-// sample to the nearest point of another edge of the face that lies across the face from it (on
-// another loop, or far round the same loop compared with the distance, and each on the face's side
-// of the other). Widths above `reach` do
-// not matter and are not searched for; distances up to `coincide` are none: two edges of a face
-// that lie on each other are one curve twice (a closed surface bounded by two edges where one seam
-// would do), and the face reaches round from one to the other.
-void lower_by_width(const CadFace& f, double reach, double coincide, const std::function<void(long long, size_t, double)>& width_at,
+// The size the face's width asks for at each sample of its edges, reported to `size_at`: for each
+// point of another edge of the face that lies across the face from the sample (on another loop, or
+// far round the same loop compared with the distance, and each on the face's side of the other),
+// `size_across(distance, way round the loop between them)`, the smallest of those. Distances above
+// `reach` do not matter and are not searched for; distances up to `coincide` are none: two edges of
+// a face that lie on each other are one curve twice (a closed surface bounded by two edges where
+// one seam would do), and the face reaches round from one to the other.
+void lower_by_width(const CadFace& f, double reach, double coincide,
+                    const std::function<void(long long, size_t, double, const std::array<double, 3>&)>& width_at,
                     const std::map<long long, SizeProfile>& profiles) {
   struct Use {
     size_t loop;
@@ -315,9 +329,60 @@ void lower_by_width(const CadFace& f, double reach, double coincide, const std::
           if (dist < kAcrossRatio * round_loop(a, samples[k], b, sq)) width = dist;
         }
       }
-      if (width < reach) width_at(f.edges[a].id, k, width);
+      if (width < reach) width_at(f.edges[a].id, k, width, p);
     }
   }
+}
+
+// The parameters (s on p0-p1, t on q0-q1, both in [0, 1]) of the closest points of two segments.
+std::pair<double, double> closest_on_segments(const double* p0, const double* p1, const double* q0, const double* q1) {
+  double d1[3], d2[3], r[3];
+  for (int c = 0; c < 3; ++c) d1[c] = p1[c] - p0[c], d2[c] = q1[c] - q0[c], r[c] = p0[c] - q0[c];
+  auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  if (!(a > 0) && !(e > 0)) return {0.0, 0.0};
+  if (!(a > 0)) return {0.0, std::clamp(f / e, 0.0, 1.0)};
+  const double c = dot(d1, r);
+  if (!(e > 0)) return {std::clamp(-c / a, 0.0, 1.0), 0.0};
+  const double b = dot(d1, d2), denom = a * e - b * b;
+  double s = denom > 1e-14 * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+  double t = (b * s + f) / e;
+  if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+  else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+  return {s, t};
+}
+
+// Where two edges of a face pass closest to each other inside chain segments of both (two skew
+// segments, as across a pinch of a twisted blend), no chain vertex lies at the narrowest place and
+// the samples on either side may be several times as wide: the arc lengths of those closest points,
+// nearer than `reach` and farther than `coincide` apart, become samples of both edges' sizes.
+void add_pinch_samples(const CadFace& f, double reach, double coincide, std::map<long long, std::vector<double>>& extra) {
+  const size_t ne = f.edges.size();
+  std::vector<std::vector<double>> arcs(ne);
+  for (size_t e = 0; e < ne; ++e)
+    if (!f.edges[e].degenerated && f.edges[e].vertices.size() >= 2) arcs[e] = chain_arcs(f, f.edges[e]);
+  const std::vector<std::array<double, 6>> box = edge_boxes(f, reach);
+  auto at = [&](int32_t v) { return &f.xyz[3 * static_cast<size_t>(v)]; };
+  for (size_t a = 0; a < ne; ++a)
+    for (size_t b = a + 1; b < ne; ++b) {
+      if (arcs[a].empty() || arcs[b].empty() || f.edges[a].id == f.edges[b].id) continue;
+      bool apart = false;
+      for (int c = 0; c < 3; ++c) apart = apart || box[a][c] > box[b][c + 3] || box[b][c] > box[a][c + 3];
+      if (apart) continue;
+      const CadEdge &ea = f.edges[a], &eb = f.edges[b];
+      for (size_t i = 0; i + 1 < ea.vertices.size(); ++i)
+        for (size_t j = 0; j + 1 < eb.vertices.size(); ++j) {
+          const double *p0 = at(ea.vertices[i]), *p1 = at(ea.vertices[i + 1]), *q0 = at(eb.vertices[j]), *q1 = at(eb.vertices[j + 1]);
+          const auto [s, t] = closest_on_segments(p0, p1, q0, q1);
+          if (!(s > 0 && s < 1 && t > 0 && t < 1)) continue;
+          double x[3], y[3];
+          for (int c = 0; c < 3; ++c) x[c] = p0[c] + s * (p1[c] - p0[c]), y[c] = q0[c] + t * (q1[c] - q0[c]);
+          const double d = distance(x, y);
+          if (d >= reach || d <= coincide) continue;
+          extra[ea.id].push_back(arcs[a][i] + s * (arcs[a][i + 1] - arcs[a][i]));
+          extra[eb.id].push_back(arcs[b][j] + t * (arcs[b][j + 1] - arcs[b][j]));
+        }
+    }
 }
 
 long long uniform_count(double length, double h, bool closed) { return std::max<long long>(closed ? 3 : 1, std::llround(length / h)); }
@@ -370,22 +435,76 @@ struct Chain {
 // h / kNarrowestEdgeFraction) and at each model vertex to the smallest segment of the edges meeting
 // there, then graded by g per unit length away from those.
 std::map<long long, std::vector<double>> graded_targets(const CadModel& model, double h, const std::map<long long, Chain>& chains,
-                                                        size_t n_vertices, double g) {
+                                                        size_t n_vertices, double g, const std::vector<std::array<double, 3>>& cusps) {
+  std::map<long long, std::vector<double>> pinches;
+  for (const CadFace& f : model.faces)
+    if (f.error.empty()) add_pinch_samples(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, pinches);
   std::map<long long, SizeProfile> profiles;
   for (const auto& [id, c] : chains) {
     SizeProfile p;
     p.s = sample_arcs(chain_arcs(*c.face, *c.edge), h / 4);
+    if (const auto it = pinches.find(id); it != pinches.end()) {
+      for (double s : it->second)
+        if (s > 0 && s < p.s.back()) p.s.push_back(s);
+      std::sort(p.s.begin(), p.s.end());
+      p.s.erase(std::unique(p.s.begin(), p.s.end()), p.s.end());
+    }
     p.v.assign(p.s.size(), c.size);
     lower_by_turning(*c.face, *c.edge, h / kSmallestRadiusFraction, p);
     profiles.emplace(id, std::move(p));
   }
   const double floor = h / kNarrowestEdgeFraction;
-  auto lower = [&](long long id, size_t k, double width) {
-    double& v = profiles.at(id).v[k];
-    v = std::min(v, std::max(floor, kWidthFactor * width));
+  const double corner_floor = h / kNarrowestCornerFraction;
+  // A face narrower somewhere than kPinchFraction of its width (2 area / perimeter) away from a cusp
+  // is pinched there, and its sizes across may go down to `floor`; elsewhere (a face narrow all
+  // along, whose width its tessellation's chords may not resolve, or beside a cusp) to
+  // `corner_floor`. Decided per face: a floor that changed from sample to sample would make
+  // the sizes along its edges rise and fall.
+  struct Across {
+    long long id;
+    size_t k;
+    double width;
+    bool near_cusp;
   };
-  for (const CadFace& f : model.faces)
-    if (f.error.empty()) lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, lower, profiles);
+  std::vector<Across> across;
+  for (const CadFace& f : model.faces) {
+    if (!f.error.empty()) continue;
+    across.clear();
+    lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
+      bool near_cusp = false;
+      for (const auto& c : cusps) near_cusp = near_cusp || distance(p.data(), c.data()) < h;
+      across.push_back({id, k, width, near_cusp});
+    }, profiles);
+    const double wide = face_width(f), pinch = kPinchFraction * wide;
+    // A pinch is narrow over a short stretch: along every edge, each run of samples narrower than
+    // `pinch` (away from cusps) would take at most kPinchSegments segments at kWidthFactor times
+    // its width. A long narrow arm of a face would take hundreds.
+    bool pinched = false;
+    if (wide >= h / kNeedleRatio) {
+      std::map<long long, std::vector<std::pair<size_t, double>>> narrow;
+      for (const Across& x : across)
+        if (!x.near_cusp && x.width < pinch) narrow[x.id].emplace_back(x.k, x.width);
+      pinched = !narrow.empty();
+      for (auto& [id, ks] : narrow) {
+        std::sort(ks.begin(), ks.end());
+        const std::vector<double>& arc = profiles.at(id).s;
+        double segments = 0;
+        for (size_t i = 1; i < ks.size(); ++i) {
+          if (ks[i].first > ks[i - 1].first + 1) {
+            segments = 0;
+            continue;
+          }
+          const double across_there = std::max(floor, kWidthFactor * 0.5 * (ks[i].second + ks[i - 1].second));
+          segments += (arc[ks[i].first] - arc[ks[i - 1].first]) / across_there;
+          pinched = pinched && segments <= kPinchSegments;
+        }
+      }
+    }
+    for (const Across& x : across) {
+      double& v = profiles.at(x.id).v[x.k];
+      v = std::min(v, std::max(pinched && !x.near_cusp ? floor : corner_floor, kWidthFactor * x.width));
+    }
+  }
   std::vector<double> vertex_size(n_vertices, 1e300);
   for (auto& [id, p] : profiles) {
     const Chain& c = chains.at(id);
@@ -570,7 +689,7 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
 }
 
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h, const std::vector<double>& face_sizes,
-                                                      double gradation) {
+                                                      double gradation, const std::vector<std::array<double, 3>>& cusps) {
   std::map<long long, double> edge_size;
   for (size_t k = 0; k < model.faces.size(); ++k) {
     const double hf = k < face_sizes.size() ? face_sizes[k] : h;
@@ -593,7 +712,7 @@ std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, dou
   }
   std::map<long long, std::vector<double>> targets;
   if (gradation > 0) {
-    targets = graded_targets(model, h, chains, vertices.size(), gradation);
+    targets = graded_targets(model, h, chains, vertices.size(), gradation, cusps);
   } else {
     for (const auto& [id, c] : chains) {
       const long long n = uniform_count(c.length, c.size, c.closed);

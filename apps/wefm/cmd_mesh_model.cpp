@@ -650,7 +650,11 @@ struct ModelPlan {
 // Every model edge discretised at the faces' sizes, then the thin tubes' and the mapped faces' edges
 // given the counts their mapping needs.
 void discretise_and_map(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan) {
-  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation);
+  std::vector<std::array<double, 3>> cusps;
+  for (const wefm_cad::CadFace& f : model.faces)
+    for (const FaceCorner& c : f.error.empty() ? sharp_corners(f, kFloorCornerDegrees) : std::vector<FaceCorner>{})
+      cusps.push_back({f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]});
+  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation, cusps);
   plan.tubes.clear();
   if (q.mapped_tubes && q.local_size) plan.tubes = map_thin_tubes(model, size, plan.face_sizes, plan.edge_nodes);
   std::vector<size_t> named;

@@ -414,6 +414,80 @@ TEST_CASE("edge segments shrink where a face is narrow, not across a gap outside
   CHECK(*std::max_element(far_side.begin(), far_side.end()) > 0.85 * h);
 }
 
+// A twisted strip 100 long and 2 wide (z = -1 to 1 between its long sides A: y = 0 and B: y = 0.05)
+// whose sides swap heights in the middle: A rises from z = -1 to 1 on one chain segment (x from 44
+// to 57), B falls from 1 to -1 on another (x from 42 to 57). There the sides pass 0.05 apart, at a
+// place inside both chain segments (two skew segments), where no chain vertex or size sample lies:
+// the nearest samples see the strip about three times as wide.
+CadFace pinched_strip() {
+  const std::vector<double> xs = {0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 80, 90, 100};
+  auto ramp = [](double x, double x0, double x1) { return std::clamp((x - x0) / (x1 - x0), 0.0, 1.0); };
+  constexpr int kRows = 4;
+  CadFace f;
+  f.index = 1;
+  f.surface_type = "bspline";
+  const auto columns = static_cast<int32_t>(xs.size());
+  auto id = [&](int32_t i, int32_t r) { return i * (kRows + 1) + r; };
+  for (double x : xs) {
+    const double za = -1 + 2 * ramp(x, 44, 57), zb = 1 - 2 * ramp(x, 42, 57);
+    for (int r = 0; r <= kRows; ++r) {
+      const double v = static_cast<double>(r) / kRows;
+      f.xyz.insert(f.xyz.end(), {x, 0.05 * v, za + v * (zb - za)});
+    }
+  }
+  for (int32_t i = 0; i + 1 < columns; ++i)
+    for (int32_t r = 0; r < kRows; ++r)
+      f.triangles.insert(f.triangles.end(), {id(i, r), id(i + 1, r), id(i + 1, r + 1), id(i, r), id(i + 1, r + 1), id(i, r + 1)});
+  wefm_cad::CadEdge a, end, b, start;
+  a.id = 1, end.id = 2, b.id = 3, start.id = 4;
+  for (int32_t i = 0; i < columns; ++i) a.vertices.push_back(id(i, 0));
+  for (int32_t r = 0; r <= kRows; ++r) end.vertices.push_back(id(columns - 1, r));
+  for (int32_t i = columns; i-- > 0;) b.vertices.push_back(id(i, kRows));
+  for (int32_t r = kRows + 1; r-- > 0;) start.vertices.push_back(id(0, r));
+  for (wefm_cad::CadEdge* e : {&a, &end, &b, &start}) e->curve_type = "BSplineCurve";
+  f.edges = {a, end, b, start};
+  f.loops = {{{0, false}, {1, false}, {2, false}, {3, false}}};
+  f.outer_loop = 0;
+  return f;
+}
+
+TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also between chain vertices") {
+  wefm_cad::CadModel m;
+  m.path = "hand-made twisted strip";
+  m.format = "brep";
+  m.bbox_diagonal = std::sqrt(100.0 * 100.0 + 2.0 * 2.0 + 0.05 * 0.05);
+  m.linear_deflection = 1e-3 * m.bbox_diagonal;
+  m.faces.push_back(pinched_strip());
+  m.edge_count = 4;
+  const double h = 10;
+  const std::vector<double> sizes(1, h);
+  // The shortest segment of each long side.
+  auto shortest = [](const std::map<long long, wefm_cad::EdgeNodes>& nodes, long long edge) {
+    const std::vector<double>& p = nodes.at(edge).xyz;
+    double s = 1e300;
+    for (size_t k = 0; k + 5 < p.size(); k += 3) s = std::min(s, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    return s;
+  };
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, sizes, 0.3);
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    // About 2.5 times the 0.05 across: below h / 32 (0.31, the floor away from pinches) and below
+    // 2.5 times the width the nearest samples see (0.14).
+    CHECK(shortest(nodes, side) < 0.2);
+    CHECK(shortest(nodes, side) > 0.05);
+    // A few dozen segments more than the 10 at h, not hundreds.
+    CHECK(nodes.at(side).xyz.size() / 3 < 100);
+  }
+  // A cusp (a corner under 10 degrees) within h of the pinch: its triangles stay as they are, and
+  // the segments there no shorter than h / 32.
+  const std::vector<std::array<double, 3>> cusps = {{50.5, 0.0, 0.0}};
+  const auto beside_cusp = wefm_cad::discretise_model_edges(m, h, sizes, 0.3, cusps);
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    CHECK(shortest(beside_cusp, side) >= h / 32 * 0.99);
+  }
+}
+
 TEST_CASE("two edges lying on each other bound a closed surface, not a face of width zero") {
   // A tube of radius 10 and length 100 tessellated by hand (48 facets round, 20 along) and cut
   // open along a line as two edges of their own (ids 2 and 4), where a seam would be one edge used
