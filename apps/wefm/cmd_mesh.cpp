@@ -15,6 +15,7 @@
 #include "exit_codes.hpp"
 #include "flatten_settings.hpp"
 #include "mesh_formats.hpp"
+#include "names.hpp"
 #include "output_file.hpp"
 #include "output_paths.hpp"
 #include "progress.hpp"
@@ -413,10 +414,9 @@ nlohmann::json report_json(const MeshRequest& q, const MeshRun& run, double t_me
   j["type_asked"] = q.mesh.type == WEFM_MESH_TRANSFINITE ? "transfinite" : q.mesh.type == WEFM_MESH_AUTO ? "auto" : "free";
   if (q.mesh.type == WEFM_MESH_AUTO) {
     // Why auto made a free mesh (null where it made the grid), and the refused grid's worst quad.
-    static const char* const kWhy[] = {nullptr, "not four-sided", "grid refused", "poor grid"};
-    const int why = r.automatic_fallback;
-    j["automatic_fallback"] = why > 0 && why < 4 ? nlohmann::json(kWhy[why]) : nlohmann::json(nullptr);
-    if (why == WEFM_FALLBACK_POOR_GRID) j["refused_grid_scaled_jacobian_min"] = r.refused_grid_scaled_jacobian_min;
+    const char* why = automatic_fallback_name(r.automatic_fallback);
+    j["automatic_fallback"] = why ? nlohmann::json(why) : nlohmann::json(nullptr);
+    if (r.automatic_fallback == WEFM_FALLBACK_POOR_GRID) j["refused_grid_scaled_jacobian_min"] = r.refused_grid_scaled_jacobian_min;
   }
   j["size"] = q.mesh.size;
   j["flatten"] = {{"s", q.settings.options.s}, {"boundary_weight", q.settings.options.boundary_weight},

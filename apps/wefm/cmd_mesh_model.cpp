@@ -840,8 +840,9 @@ struct MeshModelTimes {
 
 // The faces meant to be mapped (four-sided or named): how many, meshed transfinite, left free when
 // planned (counts not matched, or edges that follow a face lying on another), meshed free at the
-// library's say (not four corners in the domain, counts unlike) or below the quad floor; the edges
-// recounted to match; the mapped faces whose opposite sides' counts differ in the end.
+// library's say (not four-sided in the domain, the grid refused, or its worst quad below 0.3) or the
+// grid limit's; the edges recounted to match; the mapped faces whose opposite sides' counts differ
+// in the end.
 struct MappedCounts {
   size_t candidates = 0, four_sided = 0, mapped = 0, planned_free = 0, meshed_free = 0, recounted = 0, mismatched = 0;
 };
@@ -899,7 +900,7 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
   if (!plan.mapping.faces.empty() || plan.mapping.four_sided) {
     const MappedCounts m = mapped_counts(plan, runs);
     std::printf("mapped: %zu of %zu faces (%zu four-sided) meshed transfinite; %zu planned free (node counts not matched, or "
-                "nodes that follow a face lying on another); %zu meshed free at the library's, the quad floor's or the grid limit's say; %zu edges "
+                "nodes that follow a face lying on another); %zu meshed free at the library's or the grid limit's say; %zu edges "
                 "recounted to match; %zu mapped faces with unlike opposite counts\n",
                 m.mapped, m.candidates, m.four_sided, m.planned_free, m.meshed_free, m.recounted, m.mismatched);
   }
@@ -928,7 +929,7 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
 }
 
 // Why a face meant to be mapped (four-sided or named) was meshed free: its counts not matched when
-// planned, or the library's or the quad floor's say when meshed; null for the others.
+// planned, or the library's or the grid limit's say when meshed; null for the others.
 Json mapped_refused(const ModelPlan& plan, const std::vector<FaceMeshRun>& runs, const FaceMeshRun& r) {
   if (!r.mapped_refused.empty()) return r.mapped_refused;
   const auto it = plan.mapping.refused.find(static_cast<size_t>(&r - runs.data()));

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "names.hpp"
 #include "owned.hpp"
 #include "size_query.hpp"
 
@@ -33,16 +34,17 @@ void set_corner_uses(wefm_face* face, const std::array<int32_t, 4>& corner_verti
 
 // Why WEFM_MESH_AUTO made its free mesh, from the report.
 std::string fallback_reason(const wefm_mesh_report& r) {
-  char text[160];
-  switch (r.automatic_fallback) {
-    case WEFM_FALLBACK_POOR_GRID:
-      std::snprintf(text, sizeof text, "the grid's worst quad has a scaled Jacobian of %.3f, below 0.3",
-                    r.refused_grid_scaled_jacobian_min);
-      return text;
-    case WEFM_FALLBACK_GRID_REFUSED: return "the library refused the grid (opposite sides with unlike node counts, or over max_elements)";
-    case WEFM_FALLBACK_NOT_FOUR_SIDED: return "the library found the domain not four-sided";
-    default: return "the library made a free mesh";
+  const char* why = automatic_fallback_name(r.automatic_fallback);
+  if (!why) return "the library made a free mesh";
+  std::string text = std::string("the library's automatic type: ") + why;
+  if (r.automatic_fallback == WEFM_FALLBACK_POOR_GRID) {
+    char detail[96];
+    std::snprintf(detail, sizeof detail, " (its worst quad's scaled Jacobian %.3f, below 0.3)", r.refused_grid_scaled_jacobian_min);
+    text += detail;
+  } else if (r.automatic_fallback == WEFM_FALLBACK_GRID_REFUSED) {
+    text += " (opposite sides with unlike node counts, or over max_elements)";
   }
+  return text;
 }
 
 }  // namespace

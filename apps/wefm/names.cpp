@@ -32,4 +32,13 @@ const char* solver_name(int solver) {
   }
 }
 
+const char* automatic_fallback_name(int why) {
+  switch (why) {
+    case WEFM_FALLBACK_NOT_FOUR_SIDED: return "not four-sided";
+    case WEFM_FALLBACK_GRID_REFUSED: return "grid refused";
+    case WEFM_FALLBACK_POOR_GRID: return "poor grid";
+    default: return nullptr;
+  }
+}
+
 }  // namespace wefm_cli

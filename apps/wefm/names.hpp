@@ -8,5 +8,8 @@ const char* edge_mode_name(int mode);      // "auto", "free", "periodic", "scar"
 bool parse_edge_mode(const std::string& text, int& mode);
 const char* method_name(int method);       // "global", "rollout"
 const char* solver_name(int solver);       // "auto", "cholmod", "eigen"
+// Why WEFM_MESH_AUTO made a free mesh: "not four-sided", "grid refused", "poor grid"; nullptr for
+// WEFM_FALLBACK_NONE or a value this build does not know.
+const char* automatic_fallback_name(int why);
 
 }  // namespace wefm_cli
