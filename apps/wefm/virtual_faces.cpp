@@ -25,7 +25,7 @@ namespace {
 // keeps slivers on its own: over the 59 cad-more models at h = 1/40 of the diagonal without merging,
 // 91 of the 132 had a triangle with Lo lambda below 0.3. Wider faces mesh well on their own (18 of
 // 2,462 between h / 100 and h / 20 had one), but only at a cost: their local size and the edges'
-// shrinking towards them (down to h / 32, cad_edge_nodes) refine their long edges, and the
+// shrinking towards them (down to h / 32 across a strip, cad_edge_nodes) refine their long edges, and the
 // neighbours grade back up from those. Merging the faces up to h / 30 wide with their smoothest
 // neighbour halves that (docs/PERFORMANCE.md); up to h / 20 it also merged the touching faces of an
 // assembly's volumes differently and folded them onto each other at the weld.
