@@ -430,6 +430,33 @@ struct Chain {
   int v0, v1;
 };
 
+// A loop of one segment per edge and two edges (an arc and its chord: a sliver between a fillet
+// and a plane, a circular segment) would be its two chords on one line, the face between them of
+// no area. Its longest edge with one segment gets its middle, loop by loop, until every loop has at
+// least three segments.
+void at_least_three_per_loop(const CadModel& model, std::map<long long, std::vector<double>>& targets) {
+  for (const CadFace& f : model.faces) {
+    if (!f.error.empty()) continue;
+    for (const auto& loop : f.loops) {
+      for (;;) {
+        size_t segments = 0;
+        long long longest = -1;
+        double length = 0;
+        for (const CadEdgeUse& u : loop) {
+          const auto e = static_cast<size_t>(u.edge);
+          if (e >= f.edges.size()) continue;
+          const auto it = targets.find(f.edges[e].id);
+          if (it == targets.end() || it->second.size() < 2) continue;
+          segments += it->second.size() - 1;
+          if (it->second.size() == 2 && it->second.back() > length) length = it->second.back(), longest = it->first;
+        }
+        if (segments >= 3 || longest < 0 || !(length > 0)) break;
+        targets[longest] = {0.0, 0.5 * length, length};
+      }
+    }
+  }
+}
+
 // The arc lengths of each edge's nodes with local sizes: each edge's size (`Chain::size`) lowered
 // where a face that has it is narrower than its segments (kWidthFactor x the width across, down to
 // h / kNarrowestEdgeFraction) and at each model vertex to the smallest segment of the edges meeting
@@ -719,6 +746,7 @@ std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, dou
       for (long long k = 0; k <= n; ++k) targets[id].push_back(c.length * static_cast<double>(k) / static_cast<double>(n));
     }
   }
+  at_least_three_per_loop(model, targets);
   std::map<long long, EdgeNodes> nodes;
   for (const auto& [id, c] : chains) nodes.emplace(id, place(*c.face, *c.edge, targets.at(id)));
   return nodes;

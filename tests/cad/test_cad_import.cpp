@@ -14,14 +14,17 @@
 #include <string>
 #include <vector>
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepTools.hxx>
+#include <gp_Circ.hxx>
 #include <IGESControl_Controller.hxx>
 #include <IGESControl_Writer.hxx>
 
@@ -485,6 +488,30 @@ TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also be
   for (long long side : {1LL, 3LL}) {
     CAPTURE(side);
     CHECK(shortest(beside_cusp, side) >= h / 32 * 0.99);
+  }
+}
+
+TEST_CASE("a face bounded by an arc and its chord keeps an area at any size: three segments at least") {
+  // A circular segment: an arc of radius 10 over 40 degrees and its chord (6.84 long, 0.60 high).
+  // At h = 1000 each edge would be one segment, the arc's the same line as the chord: a face of no
+  // area, whose mesh collapses and leaves its neighbours' edges open.
+  const gp_Circ circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 10.0);
+  const double a = 20 * kPi / 180;
+  const gp_Pnt p(10 * std::cos(a), -10 * std::sin(a), 0), q(10 * std::cos(a), 10 * std::sin(a), 0);
+  const TopoDS_Edge arc = BRepBuilderAPI_MakeEdge(circle, p, q).Edge();
+  const TopoDS_Edge chord = BRepBuilderAPI_MakeEdge(q, p).Edge();
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakeWire(arc, chord).Wire()).Face();
+  const wefm_cad::CadModel m = load_shape(face, "wefm_circular_segment.brep");
+  REQUIRE(m.faces.size() == 1);
+  REQUIRE(m.faces[0].edges.size() == 2);
+  for (double g : {0.0, 0.3}) {
+    CAPTURE(g);
+    const double h = 1000;
+    const auto nodes = g > 0 ? wefm_cad::discretise_model_edges(m, h, wefm_cad::local_face_sizes(m, h), g) : wefm_cad::discretise_model_edges(m, h);
+    size_t segments = 0;
+    for (const auto& [id, e] : nodes) segments += e.xyz.size() / 3 - 1;
+    CHECK(segments >= 3);
+    CHECK(segments <= 4);
   }
 }
 
