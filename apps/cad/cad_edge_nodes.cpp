@@ -250,13 +250,13 @@ std::vector<std::array<double, 6>> edge_boxes(const CadFace& f, double reach) {
   return box;
 }
 
-// The size the face's width asks for at each sample of its edges, reported to `size_at`: for each
-// point of another edge of the face that lies across the face from the sample (on another loop, or
-// far round the same loop compared with the distance, and each on the face's side of the other),
-// `size_across(distance, way round the loop between them)`, the smallest of those. Distances above
-// `reach` do not matter and are not searched for; distances up to `coincide` are none: two edges of
-// a face that lie on each other are one curve twice (a closed surface bounded by two edges where
-// one seam would do), and the face reaches round from one to the other.
+// The width of the face at each sample of its edges, reported with the sample's point to
+// `width_at`: the distance from a sample to the nearest point of another edge of the face that lies
+// across the face from it (on another loop, or far round the same loop compared with the distance,
+// and each on the face's side of the other). Widths above `reach` do not matter and are not
+// searched for; distances up to `coincide` are none: two edges of a face that lie on each other are
+// one curve twice (a closed surface bounded by two edges where one seam would do), and the face
+// reaches round from one to the other.
 void lower_by_width(const CadFace& f, double reach, double coincide,
                     const std::function<void(long long, size_t, double, const std::array<double, 3>&)>& width_at,
                     const std::map<long long, SizeProfile>& profiles) {
@@ -457,10 +457,69 @@ void at_least_three_per_loop(const CadModel& model, std::map<long long, std::vec
   }
 }
 
+// The face's width at one sample of one of its edges (lower_by_width), and whether the sample lies
+// within h of a cusp (a corner under 10 degrees).
+struct Across {
+  long long id;
+  size_t k;
+  double width;
+  bool near_cusp;
+};
+
+// Whether face f is pinched: somewhere away from a cusp narrower than kPinchFraction of its width
+// (2 area / perimeter), and only over short stretches. Along every edge, each run of samples that
+// narrow would take at most kPinchSegments segments at kWidthFactor times its width (down to
+// `floor`): a long narrow arm of a face would take hundreds. A face under h / kNeedleRatio wide is
+// narrow all along, not pinched.
+bool pinched(const CadFace& f, double h, double floor, const std::vector<Across>& across, const std::map<long long, SizeProfile>& profiles) {
+  const double wide = face_width(f), pinch = kPinchFraction * wide;
+  if (!(wide >= h / kNeedleRatio)) return false;
+  std::map<long long, std::vector<std::pair<size_t, double>>> narrow;
+  for (const Across& x : across)
+    if (!x.near_cusp && x.width < pinch) narrow[x.id].emplace_back(x.k, x.width);
+  for (auto& [id, ks] : narrow) {
+    std::sort(ks.begin(), ks.end());
+    const std::vector<double>& arc = profiles.at(id).s;
+    double segments = 0;
+    for (size_t i = 1; i < ks.size(); ++i) {
+      if (ks[i].first > ks[i - 1].first + 1) {
+        segments = 0;
+        continue;
+      }
+      segments += (arc[ks[i].first] - arc[ks[i - 1].first]) / std::max(floor, kWidthFactor * 0.5 * (ks[i].second + ks[i - 1].second));
+      if (segments > kPinchSegments) return false;
+    }
+  }
+  return !narrow.empty();
+}
+
+// Lowers the sizes along the edges where a face is narrower than them, to kWidthFactor times its
+// width: down to h / kNarrowestEdgeFraction on a pinched face away from cusps, else to
+// h / kNarrowestCornerFraction. Decided per face: a floor that changed from sample to sample would
+// make the sizes along its edges rise and fall.
+void lower_across_faces(const CadModel& model, double h, const std::vector<std::array<double, 3>>& cusps, std::map<long long, SizeProfile>& profiles) {
+  const double floor = h / kNarrowestEdgeFraction, corner_floor = h / kNarrowestCornerFraction;
+  std::vector<Across> across;
+  for (const CadFace& f : model.faces) {
+    if (!f.error.empty()) continue;
+    across.clear();
+    lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
+      bool near_cusp = false;
+      for (const auto& c : cusps) near_cusp = near_cusp || distance(p.data(), c.data()) < h;
+      across.push_back({id, k, width, near_cusp});
+    }, profiles);
+    const bool pinch = pinched(f, h, floor, across, profiles);
+    for (const Across& x : across) {
+      double& v = profiles.at(x.id).v[x.k];
+      v = std::min(v, std::max(pinch && !x.near_cusp ? floor : corner_floor, kWidthFactor * x.width));
+    }
+  }
+}
+
 // The arc lengths of each edge's nodes with local sizes: each edge's size (`Chain::size`) lowered
-// where a face that has it is narrower than its segments (kWidthFactor x the width across, down to
-// h / kNarrowestEdgeFraction) and at each model vertex to the smallest segment of the edges meeting
-// there, then graded by g per unit length away from those.
+// where a face that has it is narrower than its segments (lower_across_faces; the narrowest places
+// between chain vertices sampled too, add_pinch_samples) and at each model vertex to the smallest
+// segment of the edges meeting there, then graded by g per unit length away from those.
 std::map<long long, std::vector<double>> graded_targets(const CadModel& model, double h, const std::map<long long, Chain>& chains,
                                                         size_t n_vertices, double g, const std::vector<std::array<double, 3>>& cusps) {
   std::map<long long, std::vector<double>> pinches;
@@ -480,58 +539,7 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
     lower_by_turning(*c.face, *c.edge, h / kSmallestRadiusFraction, p);
     profiles.emplace(id, std::move(p));
   }
-  const double floor = h / kNarrowestEdgeFraction;
-  const double corner_floor = h / kNarrowestCornerFraction;
-  // A face narrower somewhere than kPinchFraction of its width (2 area / perimeter) away from a cusp
-  // is pinched there, and its sizes across may go down to `floor`; elsewhere (a face narrow all
-  // along, whose width its tessellation's chords may not resolve, or beside a cusp) to
-  // `corner_floor`. Decided per face: a floor that changed from sample to sample would make
-  // the sizes along its edges rise and fall.
-  struct Across {
-    long long id;
-    size_t k;
-    double width;
-    bool near_cusp;
-  };
-  std::vector<Across> across;
-  for (const CadFace& f : model.faces) {
-    if (!f.error.empty()) continue;
-    across.clear();
-    lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
-      bool near_cusp = false;
-      for (const auto& c : cusps) near_cusp = near_cusp || distance(p.data(), c.data()) < h;
-      across.push_back({id, k, width, near_cusp});
-    }, profiles);
-    const double wide = face_width(f), pinch = kPinchFraction * wide;
-    // A pinch is narrow over a short stretch: along every edge, each run of samples narrower than
-    // `pinch` (away from cusps) would take at most kPinchSegments segments at kWidthFactor times
-    // its width. A long narrow arm of a face would take hundreds.
-    bool pinched = false;
-    if (wide >= h / kNeedleRatio) {
-      std::map<long long, std::vector<std::pair<size_t, double>>> narrow;
-      for (const Across& x : across)
-        if (!x.near_cusp && x.width < pinch) narrow[x.id].emplace_back(x.k, x.width);
-      pinched = !narrow.empty();
-      for (auto& [id, ks] : narrow) {
-        std::sort(ks.begin(), ks.end());
-        const std::vector<double>& arc = profiles.at(id).s;
-        double segments = 0;
-        for (size_t i = 1; i < ks.size(); ++i) {
-          if (ks[i].first > ks[i - 1].first + 1) {
-            segments = 0;
-            continue;
-          }
-          const double across_there = std::max(floor, kWidthFactor * 0.5 * (ks[i].second + ks[i - 1].second));
-          segments += (arc[ks[i].first] - arc[ks[i - 1].first]) / across_there;
-          pinched = pinched && segments <= kPinchSegments;
-        }
-      }
-    }
-    for (const Across& x : across) {
-      double& v = profiles.at(x.id).v[x.k];
-      v = std::min(v, std::max(pinched && !x.near_cusp ? floor : corner_floor, kWidthFactor * x.width));
-    }
-  }
+  lower_across_faces(model, h, cusps, profiles);
   std::vector<double> vertex_size(n_vertices, 1e300);
   for (auto& [id, p] : profiles) {
     const Chain& c = chains.at(id);
