@@ -30,15 +30,17 @@ constexpr double kCoincident = 1e-6;
 // Edge segments shrink towards a pinch of a face (a place narrower than kPinchFraction of the
 // face's width, 2 area / perimeter, as where a twisted blend's two sides nearly meet) down to
 // h / kNarrowestEdgeFraction: a pinch costs a few dozen segments, as they grow back by g per unit
-// length. Elsewhere only down to h / kNarrowestCornerFraction:
-// - beside a corner under 10 degrees shorter chords only narrow its triangles' angle, as they
-//   turn towards the edges' common tangent;
+// length. Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
+// at all: shorter chords there only narrow the corner's triangles, as they turn towards the edges'
+// common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40).
+// Elsewhere only down to h / kNarrowestCornerFraction:
 // - a face narrow all along (under h / kNeedleRatio wide: one narrow-face merging could not take)
 //   would ask for thousands of segments along its length, and its tessellation's chords, which may
 //   sag by more than its width, do not tell its width;
 // - a face only somewhat narrower in places is graded by its width well enough.
 constexpr double kNarrowestEdgeFraction = 300;
 constexpr double kNarrowestCornerFraction = 32;
+constexpr double kCuspReach = 0.5;
 constexpr double kPinchFraction = 0.25;
 constexpr double kPinchSegments = 50;
 constexpr double kNeedleRatio = 30;
@@ -458,7 +460,7 @@ void at_least_three_per_loop(const CadModel& model, std::map<long long, std::vec
 }
 
 // The face's width at one sample of one of its edges (lower_by_width), and whether the sample lies
-// within h of a cusp (a corner under 10 degrees).
+// within kCuspReach h of a cusp (a corner under 10 degrees).
 struct Across {
   long long id;
   size_t k;
@@ -494,9 +496,9 @@ bool pinched(const CadFace& f, double h, double floor, const std::vector<Across>
 }
 
 // Lowers the sizes along the edges where a face is narrower than them, to kWidthFactor times its
-// width: down to h / kNarrowestEdgeFraction on a pinched face away from cusps, else to
-// h / kNarrowestCornerFraction. Decided per face: a floor that changed from sample to sample would
-// make the sizes along its edges rise and fall.
+// width: down to h / kNarrowestEdgeFraction on a pinched face, else to h / kNarrowestCornerFraction;
+// not at all beside a cusp. Decided per face: a floor that changed from sample to sample would make
+// the sizes along its edges rise and fall.
 void lower_across_faces(const CadModel& model, double h, const std::vector<std::array<double, 3>>& cusps, std::map<long long, SizeProfile>& profiles) {
   const double floor = h / kNarrowestEdgeFraction, corner_floor = h / kNarrowestCornerFraction;
   std::vector<Across> across;
@@ -505,13 +507,14 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<std::
     across.clear();
     lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
       bool near_cusp = false;
-      for (const auto& c : cusps) near_cusp = near_cusp || distance(p.data(), c.data()) < h;
+      for (const auto& c : cusps) near_cusp = near_cusp || distance(p.data(), c.data()) < kCuspReach * h;
       across.push_back({id, k, width, near_cusp});
     }, profiles);
     const bool pinch = pinched(f, h, floor, across, profiles);
     for (const Across& x : across) {
+      if (x.near_cusp) continue;
       double& v = profiles.at(x.id).v[x.k];
-      v = std::min(v, std::max(pinch && !x.near_cusp ? floor : corner_floor, kWidthFactor * x.width));
+      v = std::min(v, std::max(pinch ? floor : corner_floor, kWidthFactor * x.width));
     }
   }
 }

@@ -49,11 +49,12 @@ EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const Edg
 // stays a polygon) at the smallest size of the faces that use it (`face_sizes`, one per face, or
 // empty for h everywhere). Degenerate edges get no entry. With `gradation` g > 0 the segments also
 // shrink where a face that has the edge is narrower than them (a strip, a slot, a corner sharper
-// than about 20 degrees: 2.5 times the width across, down to h / 300, or h / 32 within h of one of
-// the `cusps`) and towards a model vertex where another edge has shorter ones, growing back by g
-// per unit length (1 + g per segment, roughly); 0 keeps them uniform. `cusps` are the points of
-// corners too sharp for any good triangle (under 10 degrees): shorter segments beside one only
-// narrow its triangles' angle there, as the chords turn towards the edges' common tangent.
+// than about 20 degrees: 2.5 times the width across, down to h / 300 at a pinch, else h / 32; not
+// within h / 2 of one of the `cusps`) and towards a model vertex where another edge has shorter
+// ones, growing back by g per unit length (1 + g per segment, roughly); 0 keeps them uniform.
+// `cusps` are the points of corners too sharp for any good triangle (under 10 degrees): shorter
+// segments beside one only narrow its triangles' angle there, as the chords turn towards the
+// edges' common tangent.
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h,
                                                       const std::vector<double>& face_sizes = {}, double gradation = 0,
                                                       const std::vector<std::array<double, 3>>& cusps = {});
