@@ -671,8 +671,10 @@ void discretise_and_map(const MeshModelRequest& q, const wefm_cad::CadModel& mod
 // A face whose domain boundary, discretised at its edges' nodes, crosses itself (chords of a coarse
 // edge cutting across a narrow part of the domain) is meshed again with finer nodes on its edges:
 // its size halves, every edge whose nodes change is discretised again, and every face using such
-// an edge is meshed again with the new nodes, so the model stays conforming. At most this many rounds.
-constexpr int kEdgeRefinements = 3;
+// an edge is meshed again with the new nodes, so the model stays conforming. At most this many rounds
+// (a face's size down to 1/256): at a size of a third of the diagonal nodeocc_kuka's slotted plates
+// (faces 416 and 521) still crossed themselves after 3 and failed; rounds run only for such faces.
+constexpr int kEdgeRefinements = 8;
 
 bool boundary_failure(const FaceMeshRun& r) {
   return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE;
