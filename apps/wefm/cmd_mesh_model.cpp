@@ -644,17 +644,14 @@ struct ModelPlan {
   std::set<size_t> tubes;   // thin tubes meshed as mapped strips (map_thin_tubes)
   MappedFaces mapping;      // named and four-sided faces meshed mapped (map_four_sided_faces)
   std::vector<size_t> source;  // per face, the earlier face it lies on + 1, or 0 (coincident_faces)
+  std::vector<std::array<double, 3>> cusps;  // the faces' corners under kFloorCornerDegrees, after merging
   double time = 0;
 };
 
 // Every model edge discretised at the faces' sizes, then the thin tubes' and the mapped faces' edges
 // given the counts their mapping needs.
 void discretise_and_map(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan) {
-  std::vector<std::array<double, 3>> cusps;
-  for (const wefm_cad::CadFace& f : model.faces)
-    for (const FaceCorner& c : f.error.empty() ? sharp_corners(f, kFloorCornerDegrees) : std::vector<FaceCorner>{})
-      cusps.push_back({f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]});
-  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation, cusps);
+  plan.edge_nodes = wefm_cad::discretise_model_edges(model, size, plan.face_sizes, plan.gradation, plan.cusps);
   plan.tubes.clear();
   if (q.mapped_tubes && q.local_size) plan.tubes = map_thin_tubes(model, size, plan.face_sizes, plan.edge_nodes);
   std::vector<size_t> named;
@@ -737,6 +734,10 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
     return kExitSolver;
   }
   plan.source = coincident_faces(model);
+  // Once: every refinement round discretises the edges again (refine_for_failed_faces).
+  for (const wefm_cad::CadFace& f : model.faces)
+    for (const FaceCorner& c : f.error.empty() ? sharp_corners(f, kFloorCornerDegrees) : std::vector<FaceCorner>{})
+      plan.cusps.push_back({f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]});
   discretise_and_map(q, model, size, plan);
   plan.time = since(t0);
   return -1;
