@@ -131,6 +131,7 @@ struct FaceMeshRun {
   double s = NAN;  // the roll-out exponent of the flattening meshed (NaN: none)
   std::string conformal_refused;  // why the conformal flattening was not meshed, where it was tried
   int64_t flips = 0;
+  int64_t domain_crossings = 0;  // crossing pairs of the flattened domain's own boundary, at the tessellation's resolution
   wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
   int edge_refinements = 0;           // times its edges were discretised again (refine_for_failed_faces)
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
@@ -192,6 +193,7 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
   if (wefm_face_get_report(raw, &rep) == WEFM_OK) {
     r.score = rep.score;
     r.flips = rep.flipped_triangles;
+    r.domain_crossings = rep.boundary_intersections;
   }
   if (!last)
     if (const char* why = conformal_unusable(rep)) return fail(kExitSolver, why);
@@ -223,9 +225,13 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
   std::unique_ptr<wefm_domain_mesh, DomainMeshDeleter> dm(dm_raw);
   r.time_mesh += since(t1);
   r.mesh_status = st;
-  if (st != WEFM_OK || !dm_raw)
-    return fail(st == WEFM_ERROR_CANCELLED ? stop_exit_code() : kExitSolver,
-                std::string("mesh: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]");
+  if (st != WEFM_OK || !dm_raw) {
+    std::string why = std::string("mesh: ") + wefm_face_last_error(raw) + " [" + wefm_status_string(st) + "]";
+    if (st == WEFM_ERROR_INVALID_STATE && r.domain_crossings > 0)
+      why += "; the flattened face's own boundary crosses itself (" + std::to_string(r.domain_crossings) +
+             " crossing pairs at the tessellation's resolution: a folded tessellation?), so its edges were not refined";
+    return fail(st == WEFM_ERROR_CANCELLED ? stop_exit_code() : kExitSolver, why);
+  }
   wefm_mesh_report_init(&r.report, sizeof r.report);
   wefm_domain_mesh_get_report(dm_raw, &r.report);
   std::vector<int32_t> elements;
@@ -673,8 +679,12 @@ void discretise_and_map(const MeshModelRequest& q, const wefm_cad::CadModel& mod
 // (faces 416 and 521) still crossed themselves after 3 and failed; rounds run only for such faces.
 constexpr int kEdgeRefinements = 8;
 
+// Only a crossing of the discretised boundary that the domain itself does not have: where the
+// flattened tessellation's own boundary already crosses itself (a folded tessellation: pyocc_surf114's
+// B-spline faces at a deflection of 0.0003), finer edge nodes cannot mend it. Refining there halved
+// the face's size eight times, and with it every neighbour's edges, before the face failed anyway.
 bool boundary_failure(const FaceMeshRun& r) {
-  return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE;
+  return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE && r.domain_crossings == 0;
 }
 
 std::vector<size_t> refine_for_failed_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,

@@ -135,6 +135,28 @@ def check_count(name, r, msh):
     assert r["triangles"] <= 2.5 * asked, f"{name}: {r['triangles']} triangles where the area asks for {asked:.0f}"
 
 
+def check_folded_faces(wefm, folder, tmp):
+    """pyocc_surf114 tessellated at a deflection of 0.0003 of the diagonal: BRepMesh folds its B-spline
+    faces 1 and 4 onto themselves (edges between facets turning by 150 degrees and more), and their
+    flattened domains' own boundaries cross themselves at every s. Finer edge nodes cannot mend that:
+    the faces fail at once with a reason that says so, their edges are not refined (eight rounds halved
+    the face's size, and its neighbours' edges with it, to 1/256 before), and the other faces keep their
+    meshes."""
+    path = os.path.join(folder, "pyocc_surf114.igs")
+    msh, rep = os.path.join(tmp, "folded.msh"), os.path.join(tmp, "folded.json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "--deflection", "0.0003", "-o", msh, "--report", rep,
+                        "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 5, (p.returncode, p.stderr[-2000:])
+    r = json.load(open(rep))
+    failed = [f for f in r["faces"] if f["status"] == "failed"]
+    assert failed and len(failed) < len(r["faces"]), [(f["face"], f["status"]) for f in r["faces"]]
+    for f in failed:
+        assert "own boundary crosses itself" in f["reason"] and f["edge_refinements"] == 0, f
+        assert f"face {f['face']}" in p.stderr, p.stderr[-2000:]
+    for f in r["faces"]:
+        assert f["size"] >= r["size"] / 8, (f["face"], f["size"], r["size"])
+
+
 def check_refused_size(wefm, folder, tmp):
     """A size far below the model's is refused before any meshing, with a message naming the estimate."""
     msh = os.path.join(tmp, "tiny.msh")
@@ -237,6 +259,7 @@ def main():
         for m, ratio in CONFORMING_AT:
             check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
+        check_folded_faces(wefm, folder, tmp)
         check_merge_refusals(wefm, folder, tmp)
         check_conformal_first(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
