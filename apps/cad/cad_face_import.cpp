@@ -5,7 +5,9 @@
 // twice by the loop, once each way) and a degenerate edge merged into one vertex. We merge exactly
 // the nodes the topology says are the same (the two sides of a seam pairwise, all nodes of a
 // degenerate edge) rather than welding by distance, so distinct nodes that happen to be close (needle
-// triangles) are never merged. Triangles that collapse in the merge (at a pole) are dropped.
+// triangles) are never merged. Triangles that collapse in the merge (at a pole) are dropped. The one
+// merge by distance is of a node on no edge at the very point of a node it shares a facet with
+// (merge_duplicate_inside_nodes): a duplicate, with zero-area facets between the two.
 #include "cad_face_import.hpp"
 
 #include <algorithm>
@@ -118,6 +120,7 @@ class Importer {
     }
     UnionFind uf(n);
     if (!collect_loops() || !merge_edges(uf) || !cover_boundary(uf)) return false;
+    merge_duplicate_inside_nodes(uf);
     build_mesh(uf);
     return out_.error.empty();
   }
@@ -253,6 +256,28 @@ class Importer {
       raw_chains_[k] = chain;
     }
     return true;
+  }
+
+  // BRepMesh can leave a node inside a face at the very point of another node, with zero-area
+  // facets between them (gmsh_SampleCrankshaft4A's B-spline face 41 at a deflection of 0.0003 of the
+  // diagonal: four such pairs, one node of each in no other facet). The lone node then has no facet
+  // to predict it, and the flattening refuses the face. A node on no edge's chain is merged into the
+  // node it lies on (within the pole tolerance of nodes_at, far below any facet); its zero-area
+  // facets collapse and are dropped. Nodes on edge chains are merged by topology only (merge_edges).
+  void merge_duplicate_inside_nodes(UnionFind& uf) {
+    std::vector<bool> on_chain(points_.size(), false);
+    for (const std::vector<int>& chain : raw_chains_)
+      for (int v : chain) on_chain[static_cast<size_t>(v)] = true;
+    double scale = 0;
+    for (const gp_Pnt& q : points_) scale = std::max(scale, q.Distance(points_.front()));
+    const double tol = 1e-9 * std::max(scale, 1e-300);
+    // Only the facets' own edges: a duplicate shares a zero-area facet with the node it lies on.
+    for (const std::array<int, 3>& f : facets_)
+      for (size_t c = 0; c < 3; ++c) {
+        const int a = f[c], b = f[(c + 1) % 3];
+        if (on_chain[static_cast<size_t>(a)] && on_chain[static_cast<size_t>(b)]) continue;
+        if (points_[static_cast<size_t>(a)].Distance(points_[static_cast<size_t>(b)]) <= tol) uf.unite(a, b);
+      }
   }
 
   // BRepMesh can give up on a face and leave facets that miss its edges' polygons (one facet among

@@ -21,9 +21,20 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
+#include <gp_Sphere.hxx>
 #include <gp_Pln.hxx>
 #include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Edge.hxx>
 
+#include "cad_face_import.hpp"
 #include "cad_model.hpp"
 #include "cad_polygon_fill.hpp"
 #include "cad_wefm.hpp"
@@ -163,6 +174,66 @@ TEST_CASE("an INTERNAL face keeps its wire as its boundary") {
   for (const auto& loop : f.loops) used += loop.size();
   CHECK(used == f.edges.size());
   check_flattens_and_meshes(f);
+}
+
+TEST_CASE("a facet node lying on another inside the face is merged and its zero-area facets dropped") {
+  // BRepMesh's facets of a sphere patch (a plane's or a cylinder's have no inside node), then one
+  // inside node v doubled: its copy w (appended, so the edges' polygons keep their node numbers)
+  // takes v's place in one facet (v, a, b), and two zero-area facets (v, a, w) and (v, w, b) close
+  // the slit between them, as BRepMesh left gmsh_SampleCrankshaft4A's face 41 at a fine deflection.
+  TopoDS_Face face = BRepBuilderAPI_MakeFace(gp_Sphere(gp_Ax3(), 5), 0, 1, 0, 1);
+  BRepMesh_IncrementalMesh(face, 0.01, false, 0.2);
+  TopLoc_Location loc;
+  const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
+  REQUIRE(!tri.IsNull());
+  REQUIRE(tri->HasUVNodes());
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(face, TopAbs_EDGE, edges);
+  const wefm_cad::CadFace before = wefm_cad::import_face(face, edges, 1);
+  REQUIRE(before.error.empty());
+  // An inside node: on no edge's polygon.
+  std::set<int> on_edges;
+  for (int k = 1; k <= edges.Extent(); ++k) {
+    const Handle(Poly_PolygonOnTriangulation) poly = BRep_Tool::PolygonOnTriangulation(TopoDS::Edge(edges(k)), tri, loc);
+    REQUIRE(!poly.IsNull());
+    for (int i = 1; i <= poly->NbNodes(); ++i) on_edges.insert(poly->Node(i));
+  }
+  int split = 0, v = 0, a = 0, b = 0;
+  for (int t = 1; t <= tri->NbTriangles() && !split; ++t) {
+    int n[3];
+    tri->Triangle(t).Get(n[0], n[1], n[2]);
+    for (int c = 0; c < 3 && !split; ++c)
+      if (!on_edges.count(n[c])) split = t, v = n[c], a = n[(c + 1) % 3], b = n[(c + 2) % 3];
+  }
+  REQUIRE(split > 0);
+  const int nodes = tri->NbNodes(), w = nodes + 1;
+  Handle(Poly_Triangulation) doubled = new Poly_Triangulation(nodes + 1, tri->NbTriangles() + 2, true);
+  for (int i = 1; i <= nodes; ++i) doubled->SetNode(i, tri->Node(i)), doubled->SetUVNode(i, tri->UVNode(i));
+  doubled->SetNode(w, tri->Node(v)), doubled->SetUVNode(w, tri->UVNode(v));
+  for (int t = 1; t <= tri->NbTriangles(); ++t) doubled->SetTriangle(t, t == split ? Poly_Triangle(w, a, b) : tri->Triangle(t));
+  doubled->SetTriangle(tri->NbTriangles() + 1, Poly_Triangle(v, a, w));
+  doubled->SetTriangle(tri->NbTriangles() + 2, Poly_Triangle(v, w, b));
+  BRep_Builder builder;
+  for (int k = 1; k <= edges.Extent(); ++k) {
+    const TopoDS_Edge e = TopoDS::Edge(edges(k));
+    builder.UpdateEdge(e, BRep_Tool::PolygonOnTriangulation(e, tri, loc), doubled, loc);
+  }
+  builder.UpdateFace(face, doubled);
+  const wefm_cad::CadFace after = wefm_cad::import_face(face, edges, 1);
+  INFO(after.error);
+  REQUIRE(after.error.empty());
+  // The copy is one vertex with v again, and its two zero-area facets are gone: the face is as before.
+  CHECK(after.xyz.size() == before.xyz.size());
+  CHECK(after.triangles.size() == before.triangles.size());
+  CHECK(after.dropped_triangles == before.dropped_triangles + 2);
+  for (size_t t = 0; t + 2 < after.triangles.size(); t += 3) {
+    const double* p[3];
+    for (size_t c = 0; c < 3; ++c) p[c] = &after.xyz[3 * static_cast<size_t>(after.triangles[t + c])];
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double w[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    CHECK(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) > 1e-9);
+  }
 }
 
 TEST_CASE("fill_polygon covers a polygon as a disk, also where it crosses itself") {
