@@ -157,6 +157,25 @@ def check_folded_faces(wefm, folder, tmp):
         assert f["size"] >= r["size"] / 8, (f["face"], f["size"], r["size"])
 
 
+def check_rollout_retry(wefm, folder, tmp):
+    """gmsh_ellipses tessellated at a deflection of 0.003 of the diagonal: the global solve leaves B-spline
+    face 45 (194 facets) flipped at every s, and its mesh was 5570 triangles with min Lo lambda 0.003.
+    Flattened again by roll-out it has fewer flips (none); the report says which method made the
+    domain, and the model's min lambda is above issue 28's floor."""
+    path = os.path.join(folder, "gmsh_ellipses.brep")
+    msh, rep = os.path.join(tmp, "ellipses.msh"), os.path.join(tmp, "ellipses.json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "--deflection", "0.003", "-o", msh, "--report", rep,
+                        "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
+    r = json.load(open(rep))
+    retried = [f for f in r["faces"] if f["flatten_method"] == "rollout"]
+    assert retried, "no face was flattened again by roll-out"
+    for f in retried:
+        assert f["global_flips"] > f["flatten_flips"], f
+    assert all(f["flatten_method"] == "global" and f["global_flips"] is None for f in r["faces"] if f not in retried)
+    assert r["lambda_min"] >= 0.3, r["lambda_min"]
+
+
 def check_refused_size(wefm, folder, tmp):
     """A size far below the model's is refused before any meshing, with a message naming the estimate."""
     msh = os.path.join(tmp, "tiny.msh")
@@ -249,7 +268,7 @@ def check_conformal_first(wefm, folder, tmp):
 
 def main():
     wefm, folder = sys.argv[1:3]
-    missing = [m for m, _ in MODELS + CONFORMING_AT + [("b123d_M6x12_countersunk_screw.step", 0)] if not os.path.exists(os.path.join(folder, m))]
+    missing = [m for m, _ in MODELS + CONFORMING_AT + [("b123d_M6x12_countersunk_screw.step", 0), ("gmsh_ellipses.brep", 0), ("pyocc_surf114.igs", 0)] if not os.path.exists(os.path.join(folder, m))]
     if missing:
         print(f"the models {missing} are not in {folder}")
         return 1
@@ -260,6 +279,7 @@ def main():
             check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
         check_folded_faces(wefm, folder, tmp)
+        check_rollout_retry(wefm, folder, tmp)
         check_merge_refusals(wefm, folder, tmp)
         check_conformal_first(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
