@@ -910,8 +910,8 @@ MappedCounts mapped_counts(const ModelPlan& plan, const std::vector<FaceMeshRun>
 
 // The per-face table, the model line and the failures on stderr. Returns the worst face's exit code.
 int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs,
-                  const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, const MeshModelTimes& t,
-                  size_t n_threads) {
+                  const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, const ModelMesh::QuadStats& qs,
+                  const MeshModelTimes& t, size_t n_threads) {
   std::printf("%-6s %-10s %8s %9s %8s %8s %9s %8s  %s\n", "face", "surface", "elements", "lambda", "min", "<0.6", "score",
               "time", "status");
   int failed = 0, exit_code = kExitOk;
@@ -931,7 +931,6 @@ int print_results(const MeshModelRequest& q, const wefm_cad::CadModel& model, co
               static_cast<long long>(conf.unexplained_non_manifold_edges), failed, t.total, model.time_read, model.time_mesh, t.edges,
               t.faces, n_threads, t.weld, t.check, t.write);
   if (q.elements != WEFM_ELEMENTS_TRIANGLES) {
-    const ModelMesh::QuadStats qs = whole.quads();
     std::printf("quads: %lld written, %.1f%% of the area; scaled Jacobian min %.4f, mean %.4f (the triangles above are the quads' halves)\n",
                 static_cast<long long>(qs.quads), 100 * qs.area_fraction, qs.scaled_jacobian_min, qs.scaled_jacobian_mean);
     // A folded quad is written as it is (the model still conforms) but a solver may refuse it: said
@@ -984,8 +983,8 @@ Json mapped_refused(const ModelPlan& plan, const std::vector<FaceMeshRun>& runs,
 }
 
 Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, const ModelPlan& plan, const std::vector<FaceMeshRun>& runs,
-                 const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, int64_t collapsed,
-                 const MeshModelTimes& t, size_t n_threads, double size) {
+                 const ModelMesh& whole, const ConformityCounts& conf, const LambdaStats& quality, const ModelMesh::QuadStats& qs,
+                 int64_t collapsed, const MeshModelTimes& t, size_t n_threads, double size) {
   Json rep;
   rep["model"] = q.model_path;
   rep["size"] = size;
@@ -997,7 +996,6 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
   rep["fraction_below_0_6"] = quality.fraction_below_0_6;
   if (q.elements != WEFM_ELEMENTS_TRIANGLES) {
     // Counts and lambda above are of the triangles the quads were split into (the welded mesh).
-    const ModelMesh::QuadStats qs = whole.quads();
     rep["quads"] = {{"quads", qs.quads}, {"area_fraction", qs.area_fraction}, {"scaled_jacobian_min", qs.scaled_jacobian_min},
                     {"scaled_jacobian_mean", qs.scaled_jacobian_mean}, {"folded", qs.folded}, {"folded_faces", qs.folded_faces}};
   }
@@ -1098,6 +1096,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   t0 = Clock::now();
   const ConformityCounts conf = whole.conformity();
   const LambdaStats quality = whole.lambda();
+  // Quads (with quads asked for): measured once for the printout and the report.
+  const ModelMesh::QuadStats quads = q.elements != WEFM_ELEMENTS_TRIANGLES ? whole.quads() : ModelMesh::QuadStats{};
   t.check = since(t0);
   t0 = Clock::now();
   int write_code = kExitOk;
@@ -1108,9 +1108,9 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   t.write = since(t0);
   t.total = since(t_start);
 
-  int exit_code = std::max(write_code, print_results(q, model, plan, runs, whole, conf, quality, t, n_threads));
+  int exit_code = std::max(write_code, print_results(q, model, plan, runs, whole, conf, quality, quads, t, n_threads));
   if (!q.report_path.empty()) {
-    const Json rep = report_json(q, model, plan, runs, whole, conf, quality, collapsed, t, n_threads, size);
+    const Json rep = report_json(q, model, plan, runs, whole, conf, quality, quads, collapsed, t, n_threads, size);
     if (const int code = write_file_atomically(q.report_path, rep.dump(1) + '\n', error)) {
       std::fprintf(stderr, "wefm: %s\n", error.c_str());
       exit_code = std::max<int>(exit_code, code);
