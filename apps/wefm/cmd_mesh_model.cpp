@@ -275,10 +275,11 @@ void flatten_and_mesh(FaceMeshRun& r, const wefm_options& options, bool last, co
 // §4.1), and that domain is kept where it has fewer flips and its mesh succeeded. A coarse
 // tessellation of a strongly curved face can leave the global solve flipped at every s: gmsh_ellipses'
 // B-spline face 45 at a deflection of 0.003 of the diagonal had 19 flips at s = 1 and a mesh of 5570
-// triangles with min Lo lambda 0.003; by roll-out 0 flips, 52 triangles, min 0.73. Roll-out sweeps
-// until its tolerance or its sweep limit, about a millisecond per facet on such faces (10 s on
-// pyocc_surf114's folded face 4 of 8552 facets, and more flips there): only faces of at most
-// kRolloutFacets facets are retried.
+// triangles with min Lo lambda 0.003; by roll-out 0 flips, 56 triangles, min 0.71. Roll-out's sweeps
+// grow with the face and, on a face whose flips come from a folded tessellation, end at the sweep
+// limit with no fewer flips (pyocc_surf114's face 4, 8552 facets, took many times its global solve):
+// only faces of at most kRolloutFacets facets are retried, with at most kRolloutSweeps sweeps, where
+// ellipses' face 45 already has no flip.
 constexpr size_t kRolloutFacets = 2000;
 constexpr int kRolloutSweeps = 1000;
 

@@ -135,6 +135,16 @@ def check_count(name, r, msh):
     assert r["triangles"] <= 2.5 * asked, f"{name}: {r['triangles']} triangles where the area asks for {asked:.0f}"
 
 
+def mesh_at_deflection(wefm, path, tmp, deflection):
+    """`wefm mesh-model PATH` at 1/40 of the diagonal on facets of BRepMesh deflection `deflection`; the
+    process and its report."""
+    name = os.path.basename(path) + "." + deflection
+    msh, rep = os.path.join(tmp, name + ".msh"), os.path.join(tmp, name + ".json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "--deflection", deflection, "-o", msh, "--report", rep,
+                        "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+    return p, json.load(open(rep)) if os.path.exists(rep) else None
+
+
 def check_folded_faces(wefm, folder, tmp):
     """pyocc_surf114 tessellated at a deflection of 0.0003 of the diagonal: BRepMesh folds its B-spline
     faces 1 and 4 onto themselves (edges between facets turning by 150 degrees and more), and their
@@ -142,12 +152,8 @@ def check_folded_faces(wefm, folder, tmp):
     the faces fail at once with a reason that says so, their edges are not refined (eight rounds halved
     the face's size, and its neighbours' edges with it, to 1/256 before), and the other faces keep their
     meshes."""
-    path = os.path.join(folder, "pyocc_surf114.igs")
-    msh, rep = os.path.join(tmp, "folded.msh"), os.path.join(tmp, "folded.json")
-    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "--deflection", "0.0003", "-o", msh, "--report", rep,
-                        "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+    p, r = mesh_at_deflection(wefm, os.path.join(folder, "pyocc_surf114.igs"), tmp, "0.0003")
     assert p.returncode == 5, (p.returncode, p.stderr[-2000:])
-    r = json.load(open(rep))
     failed = [f for f in r["faces"] if f["status"] == "failed"]
     assert failed and len(failed) < len(r["faces"]), [(f["face"], f["status"]) for f in r["faces"]]
     for f in failed:
@@ -162,12 +168,8 @@ def check_rollout_retry(wefm, folder, tmp):
     face 45 (194 facets) flipped at every s, and its mesh was 5570 triangles with min Lo lambda 0.003.
     Flattened again by roll-out it has fewer flips (none); the report says which method made the
     domain, and the model's min lambda is above issue 28's floor."""
-    path = os.path.join(folder, "gmsh_ellipses.brep")
-    msh, rep = os.path.join(tmp, "ellipses.msh"), os.path.join(tmp, "ellipses.json")
-    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "--deflection", "0.003", "-o", msh, "--report", rep,
-                        "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+    p, r = mesh_at_deflection(wefm, os.path.join(folder, "gmsh_ellipses.brep"), tmp, "0.003")
     assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
-    r = json.load(open(rep))
     retried = [f for f in r["faces"] if f["flatten_method"] == "rollout"]
     assert retried, "no face was flattened again by roll-out"
     for f in retried:
