@@ -178,6 +178,18 @@ def check_rollout_retry(wefm, folder, tmp):
     assert r["lambda_min"] >= 0.3, r["lambda_min"]
 
 
+def check_merge_on_coarse_facets(wefm, folder, tmp):
+    """gmsh_component8 tessellated at a deflection of 0.003 of the diagonal: faces 10 to 14 have corners
+    of 6.4 degrees and are merged into face 1 across an edge of about 30 degrees. By facet normals
+    alone the coarser facets measured that edge above the merge limit: the faces stayed apart and the
+    model's min Lo lambda was 0.187. Measured by vertex normals too, they merge (0.79)."""
+    p, r = mesh_at_deflection(wefm, os.path.join(folder, "gmsh_component8.step"), tmp, "0.003")
+    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
+    merged = {m["face"]: m["merged_into"] for m in r["merged_faces"]}
+    assert all(merged.get(f) is not None for f in range(10, 15)), r["merged_faces"]
+    assert r["lambda_min"] >= 0.3, r["lambda_min"]
+
+
 def check_refused_size(wefm, folder, tmp):
     """A size far below the model's is refused before any meshing, with a message naming the estimate."""
     msh = os.path.join(tmp, "tiny.msh")
@@ -270,7 +282,8 @@ def check_conformal_first(wefm, folder, tmp):
 
 def main():
     wefm, folder = sys.argv[1:3]
-    missing = [m for m, _ in MODELS + CONFORMING_AT + [("b123d_M6x12_countersunk_screw.step", 0), ("gmsh_ellipses.brep", 0), ("pyocc_surf114.igs", 0)] if not os.path.exists(os.path.join(folder, m))]
+    others = ["b123d_M6x12_countersunk_screw.step", "gmsh_ellipses.brep", "pyocc_surf114.igs", "gmsh_component8.step"]
+    missing = [m for m in [m for m, _ in MODELS + CONFORMING_AT] + others if not os.path.exists(os.path.join(folder, m))]
     if missing:
         print(f"the models {missing} are not in {folder}")
         return 1
@@ -282,6 +295,7 @@ def main():
         check_refused_size(wefm, folder, tmp)
         check_folded_faces(wefm, folder, tmp)
         check_rollout_retry(wefm, folder, tmp)
+        check_merge_on_coarse_facets(wefm, folder, tmp)
         check_merge_refusals(wefm, folder, tmp)
         check_conformal_first(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
