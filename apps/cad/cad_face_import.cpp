@@ -262,15 +262,13 @@ class Importer {
   // facets between them (gmsh_SampleCrankshaft4A's B-spline face 41 at a deflection of 0.0003 of the
   // diagonal: four such pairs, one node of each in no other facet). The lone node then has no facet
   // to predict it, and the flattening refuses the face. A node on no edge's chain is merged into the
-  // node it lies on (within the pole tolerance of nodes_at, far below any facet); its zero-area
+  // node it lies on (same_point_tolerance, as a pole's nodes); its zero-area
   // facets collapse and are dropped. Nodes on edge chains are merged by topology only (merge_edges).
   void merge_duplicate_inside_nodes(UnionFind& uf) {
     std::vector<bool> on_chain(points_.size(), false);
     for (const std::vector<int>& chain : raw_chains_)
       for (int v : chain) on_chain[static_cast<size_t>(v)] = true;
-    double scale = 0;
-    for (const gp_Pnt& q : points_) scale = std::max(scale, q.Distance(points_.front()));
-    const double tol = 1e-9 * std::max(scale, 1e-300);
+    const double tol = same_point_tolerance();
     // Only the facets' own edges: a duplicate shares a zero-area facet with the node it lies on.
     for (const std::array<int, 3>& f : facets_)
       for (size_t c = 0; c < 3; ++c) {
@@ -323,14 +321,19 @@ class Importer {
     return length;
   }
 
-  // Triangulation nodes at a 3D point (a degenerate edge without a polygon): within a tolerance far
-  // below any edge length of the face.
-  std::vector<int> nodes_at(const gp_Pnt& p) const {
+  // Two triangulation nodes closer than this are at one point: far below any edge length of the face.
+  double same_point_tolerance() const {
     double scale = 0;
     for (const gp_Pnt& q : points_) scale = std::max(scale, q.Distance(points_.front()));
+    return 1e-9 * std::max(scale, 1e-300);
+  }
+
+  // Triangulation nodes at a 3D point (a degenerate edge without a polygon).
+  std::vector<int> nodes_at(const gp_Pnt& p) const {
+    const double tol = same_point_tolerance();
     std::vector<int> found;
     for (size_t i = 0; i < points_.size(); ++i)
-      if (points_[i].Distance(p) <= 1e-9 * std::max(scale, 1e-300)) found.push_back(static_cast<int>(i));
+      if (points_[i].Distance(p) <= tol) found.push_back(static_cast<int>(i));
     return found;
   }
 

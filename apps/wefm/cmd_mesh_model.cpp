@@ -685,7 +685,8 @@ struct ModelPlan {
   std::set<size_t> tubes;   // thin tubes meshed as mapped strips (map_thin_tubes)
   MappedFaces mapping;      // named and four-sided faces meshed mapped (map_four_sided_faces)
   std::vector<size_t> source;  // per face, the earlier face it lies on + 1, or 0 (coincident_faces)
-  std::vector<std::array<double, 3>> cusps;  // the faces' corners under kFloorCornerDegrees, after merging
+  std::vector<std::vector<FaceCorner>> corners;  // per face, its corners under kFloorCornerDegrees, after merging
+  std::vector<std::array<double, 3>> cusps;      // where those of faces without an import error are
   double time = 0;
 };
 
@@ -779,10 +780,14 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
     return kExitSolver;
   }
   plan.source = coincident_faces(model);
-  // Once: every refinement round discretises the edges again (refine_for_failed_faces).
-  for (const wefm_cad::CadFace& f : model.faces)
-    for (const FaceCorner& c : f.error.empty() ? sharp_corners(f, kFloorCornerDegrees) : std::vector<FaceCorner>{})
-      plan.cusps.push_back({f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]});
+  // Once, for the edges (every refinement round discretises them again: refine_for_failed_faces) and
+  // the report.
+  for (const wefm_cad::CadFace& f : model.faces) {
+    plan.corners.push_back(sharp_corners(f, kFloorCornerDegrees));
+    if (f.error.empty())
+      for (const FaceCorner& c : plan.corners.back())
+        plan.cusps.push_back({f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]});
+  }
   discretise_and_map(q, model, size, plan);
   plan.time = since(t0);
   return -1;
@@ -1056,7 +1061,7 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
   // the slivers the geometry forces from those the mesher left.
   Json corners = Json::array();
   for (const FaceMeshRun& r : runs)
-    for (const FaceCorner& c : sharp_corners(*r.face, kFloorCornerDegrees)) {
+    for (const FaceCorner& c : plan.corners[static_cast<size_t>(&r - runs.data())]) {
       const double* x = &r.face->xyz[3 * static_cast<size_t>(c.vertex)];
       corners.push_back({{"face", r.face->index}, {"degrees", c.degrees}, {"point", {x[0], x[1], x[2]}}, {"edges", c.edges}});
     }

@@ -19,10 +19,14 @@ std::vector<int32_t> chain(const wefm_cad::CadFace& f, const wefm_cad::CadEdgeUs
 
 }  // namespace
 
-std::array<double, 3> facet_normal(const wefm_cad::CadFace& f, size_t t) {
+std::array<double, 3> facet_cross(const wefm_cad::CadFace& f, size_t t) {
   const double *a = at(f, f.triangles[3 * t]), *b = at(f, f.triangles[3 * t + 1]), *c = at(f, f.triangles[3 * t + 2]);
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  std::array<double, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+std::array<double, 3> facet_normal(const wefm_cad::CadFace& f, size_t t) {
+  std::array<double, 3> n = facet_cross(f, t);
   const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   for (double& x : n) x = len > 0 ? x / len : 0;
   return n;

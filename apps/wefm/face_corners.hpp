@@ -14,6 +14,10 @@ namespace wefm_cli {
 // Radians to degrees, the unit of a face's corners and of the turns between faces.
 inline double degrees(double radians) { return radians * 180 / 3.14159265358979323846; }
 
+// The cross product of facet t's edges from its first corner: its normal (counter-clockwise seen
+// from outside) times twice its area.
+std::array<double, 3> facet_cross(const wefm_cad::CadFace& f, size_t t);
+
 // The unit normal of facet t (counter-clockwise seen from outside); zero for a degenerate facet.
 std::array<double, 3> facet_normal(const wefm_cad::CadFace& f, size_t t);
 

@@ -64,36 +64,35 @@ uint64_t pair_key(int32_t a, int32_t b) {
 
 constexpr size_t kNoFacet = static_cast<size_t>(-1);
 
-// Per segment of `chain` (a pair of consecutive vertices): the first facet of f having it as an edge,
-// or kNoFacet. Only the chain's segments are kept: a face absorbs narrow faces one after the other,
-// and each time its chains are looked up again.
-std::unordered_map<uint64_t, size_t> facets_along(const wefm_cad::CadFace& f, const std::vector<int32_t>& chain) {
-  std::unordered_map<uint64_t, size_t> out;
-  for (size_t k = 0; k + 1 < chain.size(); ++k) out.emplace(pair_key(chain[k], chain[k + 1]), kNoFacet);
-  for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t)
-    for (size_t c = 0; c < 3; ++c) {
-      const auto it = out.find(pair_key(f.triangles[3 * t + c], f.triangles[3 * t + (c + 1) % 3]));
-      if (it != out.end() && it->second == kNoFacet) it->second = t;
-    }
-  return out;
-}
+// Along `chain`, in one pass over f's facets: per segment (a pair of consecutive vertices) the first
+// facet having it as an edge, or kNoFacet; per vertex the unit sum of the normals of the facets
+// around it, each weighted by its area. Only the chain's segments and vertices are kept: a face
+// absorbs narrow faces one after the other, and each time its chains are looked up again.
+struct ChainFacets {
+  std::unordered_map<uint64_t, size_t> segment_facet;
+  std::unordered_map<int32_t, Normal> vertex_normal;
+};
 
-// Per vertex of `chain`: the sum of the normals of f's facets around it, each weighted by its area
-// (the facet's cross product), as unit vectors.
-std::unordered_map<int32_t, Normal> vertex_normals(const wefm_cad::CadFace& f, const std::vector<int32_t>& chain) {
-  std::unordered_map<int32_t, Normal> out;
-  for (int32_t v : chain) out.emplace(v, Normal{0, 0, 0});
+ChainFacets facets_along(const wefm_cad::CadFace& f, const std::vector<int32_t>& chain) {
+  ChainFacets out;
+  for (size_t k = 0; k + 1 < chain.size(); ++k) out.segment_facet.emplace(pair_key(chain[k], chain[k + 1]), kNoFacet);
+  for (int32_t v : chain) out.vertex_normal.emplace(v, Normal{0, 0, 0});
   for (size_t t = 0; 3 * t + 2 < f.triangles.size(); ++t) {
-    const double *a = at(f, f.triangles[3 * t]), *b = at(f, f.triangles[3 * t + 1]), *c = at(f, f.triangles[3 * t + 2]);
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const Normal n{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    for (size_t k = 0; k < 3; ++k) {
-      const auto it = out.find(f.triangles[3 * t + k]);
-      if (it != out.end())
+    bool on_chain = false;
+    for (size_t c = 0; c < 3; ++c) {
+      const auto it = out.segment_facet.find(pair_key(f.triangles[3 * t + c], f.triangles[3 * t + (c + 1) % 3]));
+      if (it != out.segment_facet.end() && it->second == kNoFacet) it->second = t;
+      on_chain = on_chain || out.vertex_normal.count(f.triangles[3 * t + c]);
+    }
+    if (!on_chain) continue;
+    const Normal n = facet_cross(f, t);
+    for (size_t c = 0; c < 3; ++c) {
+      const auto it = out.vertex_normal.find(f.triangles[3 * t + c]);
+      if (it != out.vertex_normal.end())
         for (size_t d = 0; d < 3; ++d) it->second[d] += n[d];
     }
   }
-  for (auto& [v, n] : out) {
+  for (auto& [v, n] : out.vertex_normal) {
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (double& x : n) x = len > 0 ? x / len : 0;
   }
@@ -125,12 +124,13 @@ Turn dihedral(const wefm_cad::CadFace& a, size_t ea, const wefm_cad::CadFace& b,
   Turn turn;
   for (size_t k = 0; k + 1 < n; ++k) {
     const size_t kb = reversed ? n - 1 - k : k, kb1 = reversed ? n - 2 - k : k + 1;
-    const auto ia = fa.find(pair_key(ca[k], ca[k + 1])), ib = fb.find(pair_key(cb[kb], cb[kb1]));
-    if (ia == fa.end() || ib == fb.end() || ia->second == kNoFacet || ib->second == kNoFacet) return Turn{180, 180};
+    const auto ia = fa.segment_facet.find(pair_key(ca[k], ca[k + 1])), ib = fb.segment_facet.find(pair_key(cb[kb], cb[kb1]));
+    if (ia == fa.segment_facet.end() || ib == fb.segment_facet.end() || ia->second == kNoFacet || ib->second == kNoFacet)
+      return Turn{180, 180};
     turn.facets = std::max(turn.facets, angle(facet_normal(a, ia->second), facet_normal(b, ib->second)));
   }
-  const auto na = vertex_normals(a, ca), nb = vertex_normals(b, cb);
-  for (size_t k = 0; k < n; ++k) turn.vertices = std::max(turn.vertices, angle(na.at(ca[k]), nb.at(cb[reversed ? n - 1 - k : k])));
+  for (size_t k = 0; k < n; ++k)
+    turn.vertices = std::max(turn.vertices, angle(fa.vertex_normal.at(ca[k]), fb.vertex_normal.at(cb[reversed ? n - 1 - k : k])));
   return turn;
 }
 
