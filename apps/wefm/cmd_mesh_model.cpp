@@ -34,6 +34,7 @@
 #include "mapped_mesh.hpp"
 #include "mapped_tubes.hpp"
 #include "model_mesh.hpp"
+#include "shared_chords.hpp"
 #include "output_file.hpp"
 #include "size_query.hpp"
 #include "output_paths.hpp"
@@ -135,18 +136,22 @@ struct FaceMeshRun {
   int64_t domain_crossings = 0;  // crossing pairs of the flattened domain's own boundary, at the tessellation's resolution
   wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
   int edge_refinements = 0;           // times its edges were discretised again (refine_for_failed_faces)
+  bool split_chords = false;          // meshed with every chord off the surface split (shared_chords.hpp)
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
   std::string type = "free";          // how it was meshed: free or transfinite
   std::string mapped_refused;         // why a face meant to be mapped was meshed free
   LambdaStats quality;                // of its final mesh, for the table and the report
 };
 
-// The run of a face to be meshed again: nothing but its face and how often its edges were refined.
+// The run of a face to be meshed again: nothing but its face, how often its edges were refined and
+// whether its chords are split.
 void reset_run(FaceMeshRun& r, int edge_refinements) {
   const wefm_cad::CadFace* face = r.face;
+  const bool split_chords = r.split_chords;
   r = FaceMeshRun{};
   r.face = face;
   r.edge_refinements = edge_refinements;
+  r.split_chords = split_chords;
 }
 
 Json defect_edges_json(const ConformityCounts& conf) {
@@ -289,6 +294,7 @@ void retry_by_rollout(FaceMeshRun& r, const wefm_options& options, const wefm_me
   FaceMeshRun retry;
   retry.face = r.face;
   retry.edge_refinements = r.edge_refinements;
+  retry.split_chords = r.split_chords;
   wefm_options rollout = options;
   rollout.method = WEFM_METHOD_ROLLOUT;
   rollout.max_rollout_sweeps = kRolloutSweeps;
@@ -818,6 +824,7 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
       MappedRequest mapped;
       mapped.options = tf_options;
       options.size = mapped.options.size = plan.face_sizes[i];
+      options.split_chords = mapped.options.split_chords = runs[i].split_chords;
       // A face found four-sided (not named, not a tube) keeps only a good grid: the library's
       // automatic meshing judges it, on the corners found here.
       const bool automatic = map && !named && !plan.tubes.count(i);
@@ -862,6 +869,18 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
+  // Once: a face meshed with its chords split that still shares one keeps it, and the check names it.
+  if (interrupted()) return;
+  std::vector<FaceMeshView> views;
+  for (const FaceMeshRun& r : runs) views.push_back({&r.xyz, &r.tris});
+  todo.clear();
+  for (size_t i : faces_with_shared_chords(views, source, weld_tolerance))
+    if (!runs[i].split_chords && !source[i]) {
+      runs[i].split_chords = true;
+      reset_run(runs[i], runs[i].edge_refinements);
+      todo.push_back(i);
+    }
+  if (!todo.empty()) mesh_or_copy(todo);
 }
 
 // The face meshes welded into one, fins dropped, the model edges declared for the conformity check.
@@ -1034,7 +1053,7 @@ Json report_json(const MeshModelRequest& q, const wefm_cad::CadModel& model, con
                      {"flatten_score", std::isfinite(r.score) ? Json(r.score) : Json(nullptr)},
                      {"flatten_s", std::isfinite(r.s) ? Json(r.s) : Json(nullptr)},
                      {"conformal_refused", r.conformal_refused.empty() ? Json(nullptr) : Json(r.conformal_refused)},
-                     {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements},
+                     {"flatten_flips", r.flips}, {"edge_refinements", r.edge_refinements}, {"split_chords", r.split_chords},
                      {"flatten_method", r.global_flips >= 0 ? "rollout" : "global"},
                      {"global_flips", r.global_flips >= 0 ? Json(r.global_flips) : Json(nullptr)},
                      {"mesh_of_face", r.copy_of ? Json(r.copy_of) : Json(nullptr)},

@@ -28,6 +28,7 @@ wefm::meshing::MeshOptions convert(const wefm_mesh_options& o) {
   m.min_angle_deg = o.min_angle_deg;
   m.max_elements = o.max_elements;
   m.elements = static_cast<wefm::meshing::Elements>(o.elements);
+  m.split_chords = o.split_chords != 0;
   return m;
 }
 

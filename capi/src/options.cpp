@@ -123,6 +123,7 @@ WEFM_API wefm_status wefm_mesh_options_init(wefm_mesh_options* options, size_t s
   o.min_angle_deg = 28;
   o.max_elements = 0;
   o.elements = WEFM_ELEMENTS_TRIANGLES;
+  o.split_chords = 0;
   return init_versioned(options, struct_size, "wefm_mesh_options_init", o);
 }
 

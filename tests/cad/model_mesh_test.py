@@ -190,6 +190,25 @@ def check_merge_on_coarse_facets(wefm, folder, tmp):
     assert r["lambda_min"] >= 0.3, r["lambda_min"]
 
 
+def check_shared_chords(wefm, folder, tmp):
+    """At 0.3 of the diagonal a half tube is narrower than half the size, and two faces that share two
+    boundary nodes across it (gmsh_wing_fuselage's half fuselage and its symmetry plane,
+    gmsh_918_pump_carter_sup's bosses split in two half tubes) each joined them by the same straight
+    chord: welded, an edge of four triangles and exit 5. Such faces are meshed again with their chords
+    split: the models conform, and the report names those faces."""
+    for model, shared in (("gmsh_wing_fuselage.step", 4), ("gmsh_918_pump_carter_sup.stp", 24)):
+        msh, rep = os.path.join(tmp, model + ".chords.msh"), os.path.join(tmp, model + ".chords.json")
+        p = subprocess.run([wefm, "mesh-model", os.path.join(folder, model), "--size-ratio", "0.3", "-o", msh, "--report", rep,
+                            "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+        assert p.returncode == 0, (model, p.returncode, p.stderr[-2000:])
+        r = json.load(open(rep))
+        c = r["conformity"]
+        assert c["unexplained_non_manifold_edges"] == 0 and c["unexplained_open_edges"] == 0, (model, c)
+        split = [f["face"] for f in r["faces"] if f["split_chords"]]
+        assert len(split) >= shared // 2, (model, split)
+        assert all(f["status"] == "ok" for f in r["faces"]), model
+
+
 def check_refused_size(wefm, folder, tmp):
     """A size far below the model's is refused before any meshing, with a message naming the estimate."""
     msh = os.path.join(tmp, "tiny.msh")
@@ -282,7 +301,7 @@ def check_conformal_first(wefm, folder, tmp):
 
 def main():
     wefm, folder = sys.argv[1:3]
-    others = ["b123d_M6x12_countersunk_screw.step", "gmsh_ellipses.brep", "pyocc_surf114.igs", "gmsh_component8.step"]
+    others = ["b123d_M6x12_countersunk_screw.step", "gmsh_918_pump_carter_sup.stp", "gmsh_ellipses.brep", "pyocc_surf114.igs", "gmsh_component8.step"]
     missing = [m for m in [m for m, _ in MODELS + CONFORMING_AT] + others if not os.path.exists(os.path.join(folder, m))]
     if missing:
         print(f"the models {missing} are not in {folder}")
@@ -293,6 +312,7 @@ def main():
         for m, ratio in CONFORMING_AT:
             check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
+        check_shared_chords(wefm, folder, tmp)
         check_folded_faces(wefm, folder, tmp)
         check_rollout_retry(wefm, folder, tmp)
         check_merge_on_coarse_facets(wefm, folder, tmp)

@@ -198,3 +198,29 @@ TEST_CASE("no mesh edge spans a half tube narrower than the size: edges between 
   CHECK(nearest >= 0.55 * 2.0);
   CHECK(test::max_off_surface(f.mesh(), dm) <= 1e-9);
 }
+
+TEST_CASE("split_chords: a coarse half tube's chords between boundary nodes are split, however short") {
+  // The half tube above at size 10: its diameter (4) is under half the size, so by default the
+  // mesher keeps chords through the axis (a corner's or a cusp's span, as far as it can tell). A
+  // caller whose other face shares those two boundary nodes (the tube's other half, a symmetry
+  // plane) asks for them to be split: every edge then keeps its middle off the axis.
+  const auto f = test::solved(test::cut_cylinder(12, 40, 2.0, 20.0, kPi));
+  auto nearest_to_axis = [&](const meshing::DomainMesh& dm) {
+    double nearest = 1e300;
+    for (size_t t = 0; t + 2 < dm.elements.size(); t += 3)
+      for (size_t i = 0; i < 3; ++i) {
+        const Vec3 m = 0.5 * (dm.xyz[static_cast<size_t>(dm.elements[t + i])] + dm.xyz[static_cast<size_t>(dm.elements[t + (i + 1) % 3])]);
+        if (m.z() > 1e-9 && m.z() < 20 - 1e-9) nearest = std::min(nearest, std::hypot(m.x(), m.y()));
+      }
+    return nearest;
+  };
+  meshing::MeshOptions o;
+  o.size = 10.0;
+  const auto plain = f.mesh_domain(o);
+  CHECK(nearest_to_axis(plain) < 0.5 * 2.0);
+  o.split_chords = true;
+  const auto split = f.mesh_domain(o);
+  CHECK(nearest_to_axis(split) >= 0.6 * 2.0);
+  CHECK(split.xyz.size() > plain.xyz.size());
+  CHECK(test::max_off_surface(f.mesh(), split) <= 1e-9);
+}

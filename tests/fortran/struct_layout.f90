@@ -104,6 +104,7 @@ program struct_layout
   call at('wefm_mesh_options min_angle_deg', c_loc(v3), c_loc(v3%min_angle_deg))
   call at('wefm_mesh_options max_elements', c_loc(v3), c_loc(v3%max_elements))
   call at('wefm_mesh_options elements', c_loc(v3), c_loc(v3%elements))
+  call at('wefm_mesh_options split_chords', c_loc(v3), c_loc(v3%split_chords))
 
   print '(a,i0)', 'wefm_mesh_report sizeof ', c_sizeof(v4)
   call at('wefm_mesh_report struct_size', c_loc(v4), c_loc(v4%struct_size))

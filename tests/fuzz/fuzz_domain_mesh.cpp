@@ -101,7 +101,7 @@ wefm_mesh_options mesh_options(Input& in, double span) {
   }
   const int n = in.u8() % 6;
   for (int k = 0; k < n; ++k) {
-    switch (in.u8() % 9) {
+    switch (in.u8() % 10) {
       case 0: o.corners[in.u8() % 4] = in.index(-1, 40); break;
       case 1: o.quads = in.u8() & 1; break;
       case 2: o.smoothing_iterations = in.index(-1, 4); break;
@@ -110,6 +110,7 @@ wefm_mesh_options mesh_options(Input& in, double span) {
       case 5: o.max_elements = in.index(-1, 400); break;
       case 6: o.type = in.index(-1, 2); break;
       case 7: o.elements = in.index(-1, 3); break;
+      case 8: o.split_chords = in.index(-1, 2); break;
       default: o.struct_size = in.u8() % 2 ? 0 : sizeof(size_t) + in.u8() % 64; break;  // old/odd callers
     }
   }

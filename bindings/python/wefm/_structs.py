@@ -181,6 +181,7 @@ class MeshOptions(ctypes.Structure):
         ("min_angle_deg", c_double),
         ("max_elements", c_int64),
         ("elements", c_int),
+        ("split_chords", c_int),
     ]
 
 

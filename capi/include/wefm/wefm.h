@@ -785,6 +785,14 @@ typedef struct wefm_mesh_options {
                                   quads and WEFM_ELEMENTS_QUADS their grid is halved both ways, the new
                                   boundary nodes at the 3D chords' midpoints as in a free all-quad mesh.
                                   Default WEFM_ELEMENTS_TRIANGLES */
+  int split_chords;          /**< free meshes: non-zero splits, at its UV middle, every edge between two boundary
+                                  nodes whose surface there lies more than a tenth of its length off the
+                                  straight edge, however short (default 0: only edges of at least size / 2, a
+                                  quarter of their length off). For a caller whose faces share two boundary
+                                  nodes across a narrow or coarse part (the two halves of a thin tube, a half
+                                  tube and its symmetry plane): both faces would otherwise make the same
+                                  straight chord between them, an edge of four triangles in the welded mesh.
+                                  Default 0 */
 } wefm_mesh_options;
 
 /** Quality and cost of a domain mesh (wefm_domain_mesh_get_report()); fill with wefm_mesh_report_init() first. */

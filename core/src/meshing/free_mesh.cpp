@@ -94,7 +94,7 @@ std::vector<std::array<Index, 2>> scar_segments(const std::vector<std::array<Ind
 // Inserts the middles of edges between two boundary nodes that span the face (spans_face), until
 // none is left or `rounds` passes: a face narrower than the size has no interior node of its own
 // there. Before improvement, so that smoothing shapes the elements around the new nodes.
-void split_spanning_edges(Triangulation& tr, const std::vector<Vec3>& xyz, Index boundary, const SurfaceMap& map, double span_floor,
+void split_spanning_edges(Triangulation& tr, const std::vector<Vec3>& xyz, Index boundary, const SurfaceMap& map, const SpanRule& span,
                           std::int64_t max_nodes, const std::function<void(Index)>& on_insert, int rounds) {
   for (int round = 0; round < rounds; ++round) {
     std::vector<std::pair<Index, P2>> middles;
@@ -104,7 +104,7 @@ void split_spanning_edges(Triangulation& tr, const std::vector<Vec3>& xyz, Index
         const Index a = tr.corner(t, i), b = tr.corner(t, (i + 1) % 3);
         // Each edge once (from the side where a < b); segments are the caller's boundary.
         if (a >= boundary || b >= boundary || a > b || tr.constrained(t, i)) continue;
-        if (spans_face(tr.node(a), tr.node(b), xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span_floor))
+        if (spans_face(tr.node(a), tr.node(b), xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span))
           middles.emplace_back(t, 0.5 * (tr.node(a) + tr.node(b)));
       }
     }
@@ -162,9 +162,10 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
     node_size[static_cast<size_t>(v)] = field.at(x);
   };
   tr.refine(size_class, o.min_angle_deg * kPi / 180.0, max_nodes, on_insert);
-  // Spans shorter than half the size are a corner's or a cusp's, not a chord across the face.
-  const double span_floor = 0.5 * o.size;
-  split_spanning_edges(tr, out.xyz, out.boundary_nodes, map, span_floor, max_nodes, on_insert, 3);
+  // Spans shorter than half the size are a corner's or a cusp's, not a chord across the face, unless
+  // the caller asks for every chord off the surface to be split (split_chords).
+  const SpanRule span = o.split_chords ? SpanRule{0, kChordSag} : SpanRule{0.5 * o.size, kSpanSag};
+  split_spanning_edges(tr, out.xyz, out.boundary_nodes, map, span, max_nodes, on_insert, 3);
   out.uv.resize(static_cast<size_t>(tr.node_count()));
   for (Index v = 0; v < tr.node_count(); ++v) out.uv[static_cast<size_t>(v)] = tr.node(v);
   auto tris = tr.triangles();
@@ -172,7 +173,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
 
   control.check(0.8);
   t0 = now();
-  improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, HardEdges(out.hard_edges), o.smoothing_iterations, map, control, span_floor);
+  improve_in_3d(out.uv, out.xyz, tris, out.boundary_nodes, HardEdges(out.hard_edges), o.smoothing_iterations, map, control, span);
   out.report.time_smooth = now() - t0;
   out.nodes_per_element = 3;
   for (const auto& t : tris) out.elements.insert(out.elements.end(), t.begin(), t.end());

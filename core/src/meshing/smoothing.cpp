@@ -10,15 +10,15 @@
 
 namespace wefm::meshing {
 
-bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, double shortest, Vec3* middle) {
-  if (!((b - a).squaredNorm() >= shortest * shortest)) return false;
+bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, const SpanRule& rule, Vec3* middle) {
+  if (!((b - a).squaredNorm() >= rule.shortest * rule.shortest)) return false;
   Vec3 x;
   if (!map.lift(0.5 * (ua + ub), x)) return false;
   if (middle) *middle = x;
   // From the line, not from the chord's middle: where the flattening stretches, the UV middle lifts
   // to a point along the edge, not beside it.
   const Vec3 e = b - a;
-  return (x - a).cross(e).norm() > kSpanSag * e.squaredNorm();
+  return (x - a).cross(e).norm() > rule.sag * e.squaredNorm();
 }
 
 namespace {
@@ -76,7 +76,7 @@ bool makes_fold(const NodeTriangles& around, const std::vector<Tri3>& tris, cons
 }
 
 std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard,
-                       const SurfaceMap& map, double span_floor) {
+                       const SurfaceMap& map, const SpanRule& span) {
   // The triangles around each node, as they were when the pass started (counting sort): the
   // neighbour across an edge is the other triangle around one of its ends that holds the edge
   // reversed. Flipped triangles are marked and left alone for the rest of the pass, so the stale
@@ -113,7 +113,7 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
       const double q1 = quality(uv, xyz, a, b, d);
       if (!(q1 > old_q + 1e-9)) continue;
       const double new_q = std::min(q1, quality(uv, xyz, d, c, a));
-      if (new_q > old_q + 1e-9 && !makes_fold(around, tris, xyz, a, b, c, d) && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span_floor))) {
+      if (new_q > old_q + 1e-9 && !makes_fold(around, tris, xyz, a, b, c, d) && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span))) {
         tris[static_cast<size_t>(t)] = {a, b, d};
         tris[static_cast<size_t>(s)] = {d, c, a};
         touched[static_cast<size_t>(s)] = touched[static_cast<size_t>(t)] = 1;
@@ -377,7 +377,7 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
 // them before improvement and flips never make one; this mends what the moves left. Returns the
 // number of edges split; an edge whose triangle another split changed waits for the next call.
 std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard,
-                            const SurfaceMap& map, double span_floor) {
+                            const SurfaceMap& map, const SpanRule& span) {
   const NodeTriangles around = node_triangles(uv.size(), tris);
   std::vector<char> touched(tris.size(), 0);
   NodeStar star(uv, xyz, tris);
@@ -394,7 +394,7 @@ std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::ve
       const Index d = tris[static_cast<size_t>(s)][static_cast<size_t>(m)];
       const P2 middle = 0.5 * (uv[static_cast<size_t>(a)] + uv[static_cast<size_t>(b)]);
       Vec3 x;
-      if (!spans_face(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span_floor, &x)) continue;
+      if (!spans_face(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span, &x)) continue;
       const Index v = static_cast<Index>(uv.size());
       uv.push_back(middle), xyz.push_back(x);
       const Index t2 = static_cast<Index>(tris.size());
@@ -413,7 +413,7 @@ std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::ve
 
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard, int iterations,
                            const SurfaceMap& map,
-                           const MeshControl& control, double span_floor) {
+                           const MeshControl& control, const SpanRule& span) {
   // Each pass over a face of millions of triangles takes a while: the caller's stop is heard
   // between passes, and the fraction reported climbs from 0.8 towards 0.95 pass by pass.
   int passes = 0;
@@ -428,7 +428,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
   auto flips = [&] {
     for (int k = 0; k < 8; ++k) {
       check();
-      if (flip_pass(uv, xyz, tris, fixed, hard, map, span_floor) < few_flips) break;
+      if (flip_pass(uv, xyz, tris, fixed, hard, map, span) < few_flips) break;
     }
   };
   std::int64_t total = 0;
@@ -453,7 +453,7 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
   }
   for (int it = 0; it < kSplitRounds; ++it) {
     check();
-    if (split_spanning(uv, xyz, tris, fixed, hard, map, span_floor) == 0) break;
+    if (split_spanning(uv, xyz, tris, fixed, hard, map, span) == 0) break;
   }
   return total;
 }

@@ -100,6 +100,7 @@ int main(void) {
   FIELD(wefm_mesh_options, min_angle_deg);
   FIELD(wefm_mesh_options, max_elements);
   FIELD(wefm_mesh_options, elements);
+  FIELD(wefm_mesh_options, split_chords);
   SIZE(wefm_mesh_report);
   FIELD(wefm_mesh_report, struct_size);
   FIELD(wefm_mesh_report, nodes);

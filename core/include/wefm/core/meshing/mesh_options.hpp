@@ -24,6 +24,7 @@ struct MeshOptions {
   double min_angle_deg = 28;
   std::int64_t max_elements = 0;
   Elements elements = Elements::Triangles;
+  bool split_chords = false;  // free meshes: split every edge between boundary nodes that leaves the surface (smoothing.hpp)
 };
 
 // Why MeshType::Automatic made a free mesh: None where it made the grid (or was not asked).

@@ -21,19 +21,32 @@ namespace wefm::meshing {
 // symmetry plane of a half model), and the two faces' meshes then share edges and triangles. Size
 // and quality never see it: in 3D the triangles on it are well shaped and no larger than h.
 constexpr double kSpanSag = 0.25;
+// With MeshOptions::split_chords: a tenth of the length, from any length. The caller knows that
+// another face shares two of this face's boundary nodes, so a straight chord between them may be
+// that face's edge too: a diagonal across a half tube twice as long as the tube is wide lies 0.24 of
+// its length off the surface, and a coarse half tube's chords are shorter than half the size.
+constexpr double kChordSag = 0.1;
 
-// Whether the edge a-b (UV ua-ub) spans the face as above; edges shorter than `shortest` never do:
-// at a sharp corner or a cusp short edges bulge as much, and splitting them leaves slivers where no
-// other face lies. `middle`, if given, gets the surface point at the UV middle.
-bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, double shortest,
+// Which edges between two boundary nodes span the face: from `shortest` long, with the surface at
+// their UV middle farther than `sag` of their length from their line.
+struct SpanRule {
+  double shortest = 0;
+  double sag = kSpanSag;
+};
+
+// Whether the edge a-b (UV ua-ub) spans the face as above. By default edges shorter than half the
+// size never do: at a sharp corner or a cusp short edges bulge as much, and splitting them leaves
+// slivers where no other face lies (free_mesh). `middle`, if given, gets the surface point at the UV
+// middle.
+bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, const SpanRule& rule,
                 Vec3* middle = nullptr);
 
 // Nodes below `fixed` (the boundary nodes) never move, and the `hard` edges between them are never
 // flipped or split. Returns the number of accepted moves.
 // `control` is checked before every pass (fractions 0.8 to 0.95): a stop throws Error(cancelled).
-// Flips never make an edge that spans the face (spans_face, edges from `span_floor` long), and the
-// last pass splits those the moves left.
+// Flips never make an edge that spans the face (spans_face by `span`), and the last pass splits
+// those the moves left.
 std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<std::array<Index, 3>>& tris, Index fixed,
-                           const HardEdges& hard, int iterations, const SurfaceMap& map, const MeshControl& control, double span_floor);
+                           const HardEdges& hard, int iterations, const SurfaceMap& map, const MeshControl& control, const SpanRule& span);
 
 }  // namespace wefm::meshing
