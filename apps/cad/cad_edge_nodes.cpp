@@ -432,6 +432,32 @@ struct Chain {
   int v0, v1;
 };
 
+// How far an edge's facet chain turns in all, radians: pi for a half circle.
+double chain_turn(const CadFace& f, const CadEdge& e) {
+  auto at = [&](size_t i) { return &f.xyz[3 * static_cast<size_t>(e.vertices[i])]; };
+  double turn = 0;
+  for (size_t i = 1; i + 1 < e.vertices.size(); ++i) {
+    const double *a = at(i - 1), *b = at(i), *c = at(i + 1);
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (lu > 0 && lv > 0) turn += std::acos(std::clamp((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv), -1.0, 1.0));
+  }
+  return turn;
+}
+
+// An edge turning by more than this with one segment (a half circle of a hole smaller than the
+// floor of lower_by_turning) gets two: its chord would be the circle's diameter, and an annulus whose
+// two circles are each split at the same diameter had both chords on one line, the face between
+// them of no area (nodeocc_battleship's faces 195 and 245 at 0.3 of the diagonal).
+constexpr double kOneSegmentTurn = 2.0944;  // 120 degrees
+
+void at_least_two_per_half_turn(const std::map<long long, Chain>& chains, std::map<long long, std::vector<double>>& targets) {
+  for (const auto& [id, c] : chains) {
+    auto& t = targets[id];
+    if (t.size() == 2 && !c.closed && t.back() > 0 && chain_turn(*c.face, *c.edge) > kOneSegmentTurn) t = {0.0, 0.5 * t.back(), t.back()};
+  }
+}
+
 // A loop of one segment per edge and two edges (an arc and its chord: a sliver between a fillet
 // and a plane, a circular segment) would be its two chords on one line, the face between them of
 // no area. Its longest edge with one segment gets its middle, loop by loop, until every loop has at
@@ -757,6 +783,7 @@ std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, dou
       for (long long k = 0; k <= n; ++k) targets[id].push_back(c.length * static_cast<double>(k) / static_cast<double>(n));
     }
   }
+  at_least_two_per_half_turn(chains, targets);
   at_least_three_per_loop(model, targets);
   std::map<long long, EdgeNodes> nodes;
   for (const auto& [id, c] : chains) nodes.emplace(id, place(*c.face, *c.edge, targets.at(id)));

@@ -43,8 +43,11 @@ CONFORMING = {"nodeocc_kuka.stp"}
 # gmsh_problemSphere at 1/20: a flip left the pole at the end of each sphere's seam two triangles that
 # reached the same node on both sides of the seam; welded, they were one triangle both ways and the
 # pole and its seam segment were lost (4 edges no triangle used; flips now refuse a fold, smoothing.cpp).
+# nodeocc_battleship at 0.3: annuli whose two circles are each two half-circle edges, split at the same
+# diameter; with one segment per half circle both chords lay on one line and the face between them had
+# no area (4 zero-area triangles; an edge turning more than 120 degrees now has two segments at least).
 CONFORMING_AT = [("gmsh_wing_fuselage.step", "0.025"), ("pyocc_11752.stp", "0.05"), ("pyocc_surf114.igs", "0.025"),
-                 ("gmsh_problemSphere.brep", "0.05")]
+                 ("gmsh_problemSphere.brep", "0.05"), ("nodeocc_battleship.step", "0.3")]
 # Models whose min lambda must reach issue 28's floor of 0.3: each had needles between a chain of short
 # boundary segments and a coarse one across a strip narrower than h, with no interior node between
 # (min 0.200 and 0.235), mended by splitting them (smoothing.cpp, split_pass).
