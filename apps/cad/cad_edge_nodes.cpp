@@ -173,19 +173,28 @@ std::array<double, 3> point_at(const CadFace& f, const CadEdge& e, const std::ve
 // circle: two segments on a half circle put a chord through the axis that the other half's mesh may
 // use too), down to `floor`. The radius at a chain vertex is the mean of its two chain segments over
 // the angle between them; a sample gets the smaller of the radii at the ends of its chain segment.
+// The turn of edge e's facet chain at chain vertex i1 between i0 and i2, radians, and the mean length
+// of its two segments there (0 where one has none).
+struct ChainTurn {
+  double angle = 0, mean_length = 0;
+};
+ChainTurn chain_turn_at(const CadFace& f, const CadEdge& e, size_t i0, size_t i1, size_t i2) {
+  auto at = [&](size_t i) { return &f.xyz[3 * static_cast<size_t>(e.vertices[i])]; };
+  const double *a = at(i0), *b = at(i1), *c = at(i2);
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
+  const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(lu > 0) || !(lv > 0)) return {};
+  return {std::acos(std::clamp((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv), -1.0, 1.0)), 0.5 * (lu + lv)};
+}
+
 void lower_by_turning(const CadFace& f, const CadEdge& e, double floor, SizeProfile& p) {
   const size_t m = e.vertices.size();
   if (m < 3) return;
-  auto at = [&](size_t i) { return &f.xyz[3 * static_cast<size_t>(e.vertices[i])]; };
   const bool closed = e.vertices.front() == e.vertices.back();
   std::vector<double> radius(m, std::numeric_limits<double>::infinity());
   auto turning = [&](size_t i0, size_t i1, size_t i2) {
-    const double *a = at(i0), *b = at(i1), *c = at(i2);
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
-    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (!(lu > 0) || !(lv > 0)) return std::numeric_limits<double>::infinity();
-    const double angle = std::acos(std::clamp((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv), -1.0, 1.0));
-    return angle > 1e-3 ? 0.5 * (lu + lv) / angle : std::numeric_limits<double>::infinity();
+    const ChainTurn t = chain_turn_at(f, e, i0, i1, i2);
+    return t.mean_length > 0 && t.angle > 1e-3 ? t.mean_length / t.angle : std::numeric_limits<double>::infinity();
   };
   for (size_t i = 1; i + 1 < m; ++i) radius[i] = turning(i - 1, i, i + 1);
   if (closed) radius[0] = radius[m - 1] = turning(m - 2, 0, 1);
@@ -434,14 +443,8 @@ struct Chain {
 
 // How far an edge's facet chain turns in all, radians: pi for a half circle.
 double chain_turn(const CadFace& f, const CadEdge& e) {
-  auto at = [&](size_t i) { return &f.xyz[3 * static_cast<size_t>(e.vertices[i])]; };
   double turn = 0;
-  for (size_t i = 1; i + 1 < e.vertices.size(); ++i) {
-    const double *a = at(i - 1), *b = at(i), *c = at(i + 1);
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - b[0], c[1] - b[1], c[2] - b[2]};
-    const double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]), lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (lu > 0 && lv > 0) turn += std::acos(std::clamp((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv), -1.0, 1.0));
-  }
+  for (size_t i = 1; i + 1 < e.vertices.size(); ++i) turn += chain_turn_at(f, e, i - 1, i, i + 1).angle;
   return turn;
 }
 
