@@ -729,15 +729,12 @@ bool boundary_failure(const FaceMeshRun& r) {
   return r.status == "failed" && r.mesh_status == WEFM_ERROR_INVALID_STATE && r.domain_crossings == 0;
 }
 
-std::vector<size_t> refine_for_failed_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
-                                            double size, ModelPlan& plan) {
-  std::set<size_t> faces;
-  for (size_t i = 0; i < runs.size(); ++i)
-    if (boundary_failure(runs[i])) {
-      plan.face_sizes[i] *= 0.5;
-      faces.insert(i);
-    }
+// Halves the size of `faces`, discretises the edges again and returns the faces to mesh again, reset:
+// those, and every face using an edge whose nodes changed.
+std::vector<size_t> refine_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs, double size,
+                                 ModelPlan& plan, std::set<size_t> faces) {
   if (faces.empty()) return {};
+  for (size_t i : faces) plan.face_sizes[i] *= 0.5;
   const auto before = std::move(plan.edge_nodes);
   discretise_and_map(q, model, size, plan);
   std::set<long long> changed;
@@ -751,6 +748,38 @@ std::vector<size_t> refine_for_failed_faces(const MeshModelRequest& q, const wef
   std::vector<size_t> todo(faces.begin(), faces.end());
   for (size_t i : todo) reset_run(runs[i], runs[i].edge_refinements + 1);
   return todo;
+}
+
+std::vector<size_t> refine_for_failed_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
+                                            double size, ModelPlan& plan) {
+  std::set<size_t> faces;
+  for (size_t i = 0; i < runs.size(); ++i)
+    if (boundary_failure(runs[i])) faces.insert(i);
+  return refine_faces(q, model, runs, size, plan, std::move(faces));
+}
+
+// A face the check finds at fault (its triangles on an edge used more or fewer times than the B-rep
+// says, or of zero area) is meshed again at half its size, with its edges and the faces on those
+// edges: at a size well above a face's radius of curvature its mesh can lie on itself
+// (occt_MODERN_Sink_1's B-spline face 55, a tube of radius about 1.3, meshed at 1.95 = h / 8 at 0.1
+// of the diagonal: edges of four triangles inside it). A face lying on another is refined with it.
+// At most this many rounds, and none where a face failed (the edges around it are open whatever its
+// neighbours do); what is left is reported as before.
+constexpr int kRepairRounds = 2;
+
+std::vector<size_t> refine_defect_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
+                                        double size, ModelPlan& plan, const std::vector<int>& defect_faces) {
+  std::map<int, size_t> by_tag;
+  for (size_t i = 0; i < runs.size(); ++i) by_tag[runs[i].face->index] = i;
+  std::set<size_t> faces;
+  for (int tag : defect_faces)
+    if (const auto it = by_tag.find(tag); it != by_tag.end()) {
+      const size_t i = it->second;
+      if (runs[i].edge_refinements >= kEdgeRefinements) continue;
+      faces.insert(plan.source[i] ? plan.source[i] - 1 : i);
+      if (plan.source[i]) faces.insert(i);
+    }
+  return refine_faces(q, model, runs, size, plan, std::move(faces));
 }
 
 // Returns -1 to go on, kExitUsage for a --transfinite face the model does not have, or kExitSolver
@@ -799,11 +828,12 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
   return -1;
 }
 
-// Meshes every face on `threads` threads: first all, then again those whose edges had to be refined
-// or whose edge nodes a neighbour adopted. A face lying on an earlier one gets that one's mesh where
-// it can (copy_coincident), also when only the earlier one was meshed again.
-void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan,
-                    std::vector<FaceMeshRun>& runs, size_t n_threads, double weld_tolerance) {
+// Meshes the faces `todo` on `threads` threads (all at first, those a repair round reset later), then
+// again those whose edges had to be refined or whose edge nodes a neighbour adopted. A face lying on
+// an earlier one gets that one's mesh where it can (copy_coincident), also when only the earlier one
+// was meshed again.
+void mesh_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan, std::vector<FaceMeshRun>& runs,
+                size_t n_threads, double weld_tolerance, std::vector<size_t> todo) {
   wefm_mesh_options free_options, tf_options;
   wefm_mesh_options_init(&free_options, sizeof free_options);
   free_options.size = size;
@@ -856,8 +886,6 @@ void mesh_all_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, 
       }
     mesh_faces(alone);
   };
-  std::vector<size_t> todo(runs.size());
-  for (size_t i = 0; i < todo.size(); ++i) todo[i] = i;
   mesh_or_copy(todo);
   for (int round = 0; round < kEdgeRefinements && !interrupted(); ++round) {
     todo = refine_for_failed_faces(q, model, runs, size, plan);
@@ -1110,20 +1138,37 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   // Weld at a tolerance far below the size and the facet lengths, far above rounding.
   const double weld_tolerance = 1e-7 * model.bbox_diagonal;
   auto t0 = Clock::now();
-  mesh_all_faces(q, model, size, plan, runs, n_threads, weld_tolerance);
-  for (FaceMeshRun& r : runs) r.quality = ModelMesh::lambda_of(r.xyz, r.tris);
+  std::vector<size_t> all(runs.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+  mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, all);
   t.faces = since(t0);
 
-  t0 = Clock::now();
   ModelMesh whole(weld_tolerance);
-  const int64_t collapsed = assemble(model, plan, runs, size, q.elements == WEFM_ELEMENTS_QUADS, whole);
-  t.weld = since(t0);
+  int64_t collapsed = 0;
+  ConformityCounts conf;
+  for (int round = 0;; ++round) {
+    t0 = Clock::now();
+    whole = ModelMesh(weld_tolerance);
+    collapsed = assemble(model, plan, runs, size, q.elements == WEFM_ELEMENTS_QUADS, whole);
+    t.weld += since(t0);
+    t0 = Clock::now();
+    conf = whole.conformity();
+    t.check += since(t0);
+    // The edges around a failed face are open whatever its neighbours do.
+    const bool failed = std::any_of(runs.begin(), runs.end(), [](const FaceMeshRun& r) { return r.status == "failed"; });
+    if (!conf.defects() || failed || round == kRepairRounds || interrupted()) break;
+    t0 = Clock::now();
+    const std::vector<size_t> todo = refine_defect_faces(q, model, runs, size, plan, conf.defect_faces);
+    if (todo.empty()) break;
+    mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, todo);
+    t.faces += since(t0);
+  }
+  for (FaceMeshRun& r : runs) r.quality = ModelMesh::lambda_of(r.xyz, r.tris);
   t0 = Clock::now();
-  const ConformityCounts conf = whole.conformity();
   const LambdaStats quality = whole.lambda();
   // Quads (with quads asked for): measured once for the printout and the report.
   const ModelMesh::QuadStats quads = q.elements != WEFM_ELEMENTS_TRIANGLES ? whole.quads() : ModelMesh::QuadStats{};
-  t.check = since(t0);
+  t.check += since(t0);
   t0 = Clock::now();
   int write_code = kExitOk;
   if (!make_parent_dirs(q.out_path, error) || write_mesh(q.out_path, q.format, whole.description(), error) != kExitOk) {

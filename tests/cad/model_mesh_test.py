@@ -212,6 +212,22 @@ def check_shared_chords(wefm, folder, tmp):
         assert all(f["status"] == "ok" for f in r["faces"]), model
 
 
+def check_repair_round(wefm, folder, tmp):
+    """occt_MODERN_Sink_1 at 0.1 of the diagonal: B-spline face 55, a tube of radius about 1.3 meshed at
+    1.95 (h / 8), lay on itself (edges of four triangles inside it, exit 5). A face the check finds at
+    fault is meshed again at half its size with its edges: the model conforms, and the report shows
+    the face refined."""
+    msh, rep = os.path.join(tmp, "sink.msh"), os.path.join(tmp, "sink.json")
+    p = subprocess.run([wefm, "mesh-model", os.path.join(folder, "occt_MODERN_Sink_1.brep"), "--size-ratio", "0.1", "-o", msh,
+                        "--report", rep, "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
+    r = json.load(open(rep))
+    face = next(f for f in r["faces"] if f["face"] == 55)
+    assert face["edge_refinements"] >= 1 and face["size"] < r["size"] / 8, face
+    c = r["conformity"]
+    assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0 and c["zero_area_triangles"] == 0, c
+
+
 def check_refused_size(wefm, folder, tmp):
     """A size far below the model's is refused before any meshing, with a message naming the estimate."""
     msh = os.path.join(tmp, "tiny.msh")
@@ -304,7 +320,7 @@ def check_conformal_first(wefm, folder, tmp):
 
 def main():
     wefm, folder = sys.argv[1:3]
-    others = ["b123d_M6x12_countersunk_screw.step", "gmsh_918_pump_carter_sup.stp", "gmsh_ellipses.brep", "pyocc_surf114.igs", "gmsh_component8.step"]
+    others = ["b123d_M6x12_countersunk_screw.step", "gmsh_918_pump_carter_sup.stp", "occt_MODERN_Sink_1.brep", "gmsh_ellipses.brep", "pyocc_surf114.igs", "gmsh_component8.step"]
     missing = [m for m in [m for m, _ in MODELS + CONFORMING_AT] + others if not os.path.exists(os.path.join(folder, m))]
     if missing:
         print(f"the models {missing} are not in {folder}")
@@ -316,6 +332,7 @@ def main():
             check(wefm, os.path.join(folder, m), False, tmp, ratio)
         check_refused_size(wefm, folder, tmp)
         check_shared_chords(wefm, folder, tmp)
+        check_repair_round(wefm, folder, tmp)
         check_folded_faces(wefm, folder, tmp)
         check_rollout_retry(wefm, folder, tmp)
         check_merge_on_coarse_facets(wefm, folder, tmp)
