@@ -135,7 +135,7 @@ struct FaceMeshRun {
   int64_t global_flips = -1;     // the global solve's flips where roll-out replaced it (retry_by_rollout), else -1
   int64_t domain_crossings = 0;  // crossing pairs of the flattened domain's own boundary, at the tessellation's resolution
   wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
-  int edge_refinements = 0;           // times its edges were discretised again (refine_for_failed_faces)
+  int edge_refinements = 0;           // times its size was halved (refine_for_failed_faces, refine_defect_faces)
   bool split_chords = false;          // meshed with every chord off the surface split (shared_chords.hpp)
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
   std::string type = "free";          // how it was meshed: free or transfinite
@@ -938,6 +938,31 @@ struct MeshModelTimes {
   double total = 0, edges = 0, faces = 0, weld = 0, check = 0, write = 0;
 };
 
+// The face meshes welded into `whole` and checked (`conf`), with up to kRepairRounds rounds of
+// meshing the faces at fault again (refine_defect_faces) while the check finds defects and every face
+// was meshed: the edges around a failed face are open whatever its neighbours do. Returns the
+// triangles welding collapsed or dropped; adds to the weld, check and faces times.
+int64_t assemble_and_repair(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan,
+                            std::vector<FaceMeshRun>& runs, size_t n_threads, double weld_tolerance, ModelMesh& whole,
+                            ConformityCounts& conf, MeshModelTimes& t) {
+  for (int round = 0;; ++round) {
+    auto t0 = Clock::now();
+    whole = ModelMesh(weld_tolerance);
+    const int64_t collapsed = assemble(model, plan, runs, size, q.elements == WEFM_ELEMENTS_QUADS, whole);
+    t.weld += since(t0);
+    t0 = Clock::now();
+    conf = whole.conformity();
+    t.check += since(t0);
+    const bool failed = std::any_of(runs.begin(), runs.end(), [](const FaceMeshRun& r) { return r.status == "failed"; });
+    if (!conf.defects() || failed || round == kRepairRounds || interrupted()) return collapsed;
+    t0 = Clock::now();
+    const std::vector<size_t> todo = refine_defect_faces(q, model, runs, size, plan, conf.defect_faces);
+    if (todo.empty()) return collapsed;
+    mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, todo);
+    t.faces += since(t0);
+  }
+}
+
 // The faces meant to be mapped (four-sided or named): how many, meshed transfinite, left free when
 // planned (counts not matched, or edges that follow a face lying on another), meshed free at the
 // library's say (not four-sided in the domain, the grid refused, or its worst quad below 0.3) or the
@@ -1144,25 +1169,8 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   t.faces = since(t0);
 
   ModelMesh whole(weld_tolerance);
-  int64_t collapsed = 0;
   ConformityCounts conf;
-  for (int round = 0;; ++round) {
-    t0 = Clock::now();
-    whole = ModelMesh(weld_tolerance);
-    collapsed = assemble(model, plan, runs, size, q.elements == WEFM_ELEMENTS_QUADS, whole);
-    t.weld += since(t0);
-    t0 = Clock::now();
-    conf = whole.conformity();
-    t.check += since(t0);
-    // The edges around a failed face are open whatever its neighbours do.
-    const bool failed = std::any_of(runs.begin(), runs.end(), [](const FaceMeshRun& r) { return r.status == "failed"; });
-    if (!conf.defects() || failed || round == kRepairRounds || interrupted()) break;
-    t0 = Clock::now();
-    const std::vector<size_t> todo = refine_defect_faces(q, model, runs, size, plan, conf.defect_faces);
-    if (todo.empty()) break;
-    mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, todo);
-    t.faces += since(t0);
-  }
+  const int64_t collapsed = assemble_and_repair(q, model, size, plan, runs, n_threads, weld_tolerance, whole, conf, t);
   for (FaceMeshRun& r : runs) r.quality = ModelMesh::lambda_of(r.xyz, r.tris);
   t0 = Clock::now();
   const LambdaStats quality = whole.lambda();
