@@ -34,7 +34,6 @@
 #include "mapped_mesh.hpp"
 #include "mapped_tubes.hpp"
 #include "model_mesh.hpp"
-#include "shared_chords.hpp"
 #include "output_file.hpp"
 #include "size_query.hpp"
 #include "output_paths.hpp"
@@ -135,8 +134,8 @@ struct FaceMeshRun {
   int64_t global_flips = -1;     // the global solve's flips where roll-out replaced it (retry_by_rollout), else -1
   int64_t domain_crossings = 0;  // crossing pairs of the flattened domain's own boundary, at the tessellation's resolution
   wefm_status mesh_status = WEFM_OK;  // what the domain meshing returned, if it ran
-  int edge_refinements = 0;           // times its size was halved (refine_for_failed_faces, refine_defect_faces)
-  bool split_chords = false;          // meshed with every chord off the surface split (shared_chords.hpp)
+  int edge_refinements = 0;           // times its size was halved (refine_for_failed_faces, repair_defect_faces)
+  bool split_chords = false;          // meshed with every chord off the surface split (repair_defect_faces)
   int copy_of = 0;                    // the face whose mesh it has (a face lying on it), or 0
   std::string type = "free";          // how it was meshed: free or transfinite
   std::string mapped_refused;         // why a face meant to be mapped was meshed free
@@ -758,28 +757,39 @@ std::vector<size_t> refine_for_failed_faces(const MeshModelRequest& q, const wef
   return refine_faces(q, model, runs, size, plan, std::move(faces));
 }
 
-// A face the check finds at fault (its triangles on an edge used more or fewer times than the B-rep
-// says, or of zero area) is meshed again at half its size, with its edges and the faces on those
-// edges: at a size well above a face's radius of curvature its mesh can lie on itself
-// (occt_MODERN_Sink_1's B-spline face 55, a tube of radius about 1.3, meshed at 1.95 = h / 8 at 0.1
-// of the diagonal: edges of four triangles inside it). A face lying on another is refined with it.
+// The faces the check finds at fault (their triangles on an edge used more or fewer times than the
+// B-rep says, or of zero area) are meshed again, a face lying on another with that one:
+// - first with every chord off the surface split (wefm_mesh_options.split_chords). Where two faces
+//   share two boundary nodes across a part narrower than the size (a coarse half tube and its
+//   symmetry plane, the two halves of a thin tube), each mesh may join them by the same straight
+//   chord, an edge of four triangles once welded (gmsh_wing_fuselage, gmsh_918_pump_carter_sup and
+//   nodeocc_battleship at 0.3 of the diagonal);
+// - then at half their size, with their edges and the faces on those edges: at a size well above a
+//   face's radius of curvature its mesh can lie on itself (occt_MODERN_Sink_1's B-spline face 55, a
+//   tube of radius about 1.3 meshed at 1.95 = h / 8, at 0.1 of the diagonal).
 // At most this many rounds, and none where a face failed (the edges around it are open whatever its
 // neighbours do); what is left is reported as before.
-constexpr int kRepairRounds = 2;
+constexpr int kRepairRounds = 3;
 
-std::vector<size_t> refine_defect_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
+std::vector<size_t> repair_defect_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, std::vector<FaceMeshRun>& runs,
                                         double size, ModelPlan& plan, const std::vector<int>& defect_faces) {
   std::map<int, size_t> by_tag;
   for (size_t i = 0; i < runs.size(); ++i) by_tag[runs[i].face->index] = i;
-  std::set<size_t> faces;
+  std::set<size_t> split, refine;
   for (int tag : defect_faces)
     if (const auto it = by_tag.find(tag); it != by_tag.end()) {
-      const size_t i = it->second;
-      if (runs[i].edge_refinements >= kEdgeRefinements) continue;
-      faces.insert(plan.source[i] ? plan.source[i] - 1 : i);
-      if (plan.source[i]) faces.insert(i);
+      const size_t i = plan.source[it->second] ? plan.source[it->second] - 1 : it->second;
+      if (!runs[i].split_chords) split.insert(i);
+      else if (runs[i].edge_refinements < kEdgeRefinements) refine.insert(i);
     }
-  return refine_faces(q, model, runs, size, plan, std::move(faces));
+  std::set<size_t> todo;
+  for (size_t i : split) {
+    reset_run(runs[i], runs[i].edge_refinements);
+    runs[i].split_chords = true;
+    todo.insert(i);
+  }
+  for (size_t i : refine_faces(q, model, runs, size, plan, std::move(refine))) todo.insert(i);
+  return {todo.begin(), todo.end()};
 }
 
 // Returns -1 to go on, kExitUsage for a --transfinite face the model does not have, or kExitSolver
@@ -897,18 +907,6 @@ void mesh_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, doub
     if (todo.empty()) break;
     mesh_or_copy(todo);
   }
-  // Once: a face meshed with its chords split that still shares one keeps it, and the check names it.
-  if (interrupted()) return;
-  std::vector<FaceMeshView> views;
-  for (const FaceMeshRun& r : runs) views.push_back({&r.xyz, &r.tris});
-  todo.clear();
-  for (size_t i : faces_with_shared_chords(views, source, weld_tolerance))
-    if (!runs[i].split_chords && !source[i]) {
-      runs[i].split_chords = true;
-      reset_run(runs[i], runs[i].edge_refinements);
-      todo.push_back(i);
-    }
-  if (!todo.empty()) mesh_or_copy(todo);
 }
 
 // The face meshes welded into one, fins dropped, the model edges declared for the conformity check.
@@ -939,7 +937,7 @@ struct MeshModelTimes {
 };
 
 // The face meshes welded into `whole` and checked (`conf`), with up to kRepairRounds rounds of
-// meshing the faces at fault again (refine_defect_faces) while the check finds defects and every face
+// meshing the faces at fault again (repair_defect_faces) while the check finds defects and every face
 // was meshed: the edges around a failed face are open whatever its neighbours do. Returns the
 // triangles welding collapsed or dropped; adds to the weld, check and faces times.
 int64_t assemble_and_repair(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan,
@@ -956,7 +954,7 @@ int64_t assemble_and_repair(const MeshModelRequest& q, const wefm_cad::CadModel&
     const bool failed = std::any_of(runs.begin(), runs.end(), [](const FaceMeshRun& r) { return r.status == "failed"; });
     if (!conf.defects() || failed || round == kRepairRounds || interrupted()) return collapsed;
     t0 = Clock::now();
-    const std::vector<size_t> todo = refine_defect_faces(q, model, runs, size, plan, conf.defect_faces);
+    const std::vector<size_t> todo = repair_defect_faces(q, model, runs, size, plan, conf.defect_faces);
     if (todo.empty()) return collapsed;
     mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, todo);
     t.faces += since(t0);

@@ -248,13 +248,6 @@ std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int3
   return boundary;
 }
 
-void for_each_boundary_pair(size_t nodes, const std::vector<int32_t>& triangles, const std::function<void(int32_t, int32_t, int)>& f) {
-  const std::vector<char> boundary = ModelMesh::boundary_nodes(nodes, triangles);
-  EdgeTable(nodes, triangles).for_each([&](int32_t a, int32_t b, const auto* first, const auto* last) {
-    if (boundary[static_cast<size_t>(a)] && boundary[static_cast<size_t>(b)]) f(a, b, static_cast<int>(last - first));
-  });
-}
-
 void ModelMesh::resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2) const {
   auto has = [](const std::array<int32_t, 3>& t, int32_t v) { return t[0] == v || t[1] == v || t[2] == v; };
   int k1 = 0, k2 = 0;

@@ -6,7 +6,6 @@
 // welded, so two faces that merely come close are not stitched together.
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -147,10 +146,5 @@ class ModelMesh {
   PointGrid grid_;                      // welded boundary nodes
   std::unordered_map<uint64_t, int> expected_uses_;  // node pair on a model edge -> face uses
 };
-
-// Calls f(a, b, uses) once per edge of a face mesh (3 doubles per node, 3 nodes per triangle)
-// between two of its boundary nodes: on the boundary where one triangle uses it, a chord inside the
-// face where two do.
-void for_each_boundary_pair(size_t nodes, const std::vector<int32_t>& triangles, const std::function<void(int32_t, int32_t, int)>& f);
 
 }  // namespace wefm_cli

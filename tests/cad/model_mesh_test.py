@@ -215,8 +215,8 @@ def check_shared_chords(wefm, folder, tmp):
 def check_repair_round(wefm, folder, tmp):
     """occt_MODERN_Sink_1 at 0.1 of the diagonal: B-spline face 55, a tube of radius about 1.3 meshed at
     1.95 (h / 8), lay on itself (edges of four triangles inside it, exit 5). A face the check finds at
-    fault is meshed again at half its size with its edges: the model conforms, and the report shows
-    the face refined."""
+    fault is meshed again, with its chords split (no help here), then at half its size with its edges:
+    the model conforms, and the report shows the face refined."""
     msh, rep = os.path.join(tmp, "sink.msh"), os.path.join(tmp, "sink.json")
     p = subprocess.run([wefm, "mesh-model", os.path.join(folder, "occt_MODERN_Sink_1.brep"), "--size-ratio", "0.1", "-o", msh,
                         "--report", rep, "-j", "2", "-q"], capture_output=True, text=True, timeout=300)
