@@ -842,8 +842,8 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
 // again those whose edges had to be refined or whose edge nodes a neighbour adopted. A face lying on
 // an earlier one gets that one's mesh where it can (copy_coincident), also when only the earlier one
 // was meshed again.
-void mesh_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan, std::vector<FaceMeshRun>& runs,
-                size_t n_threads, double weld_tolerance, std::vector<size_t> todo) {
+void mesh_model_faces(const MeshModelRequest& q, const wefm_cad::CadModel& model, double size, ModelPlan& plan,
+                      std::vector<FaceMeshRun>& runs, size_t n_threads, double weld_tolerance, std::vector<size_t> todo) {
   wefm_mesh_options free_options, tf_options;
   wefm_mesh_options_init(&free_options, sizeof free_options);
   free_options.size = size;
@@ -956,7 +956,7 @@ int64_t assemble_and_repair(const MeshModelRequest& q, const wefm_cad::CadModel&
     t0 = Clock::now();
     const std::vector<size_t> todo = repair_defect_faces(q, model, runs, size, plan, conf.defect_faces);
     if (todo.empty()) return collapsed;
-    mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, todo);
+    mesh_model_faces(q, model, size, plan, runs, n_threads, weld_tolerance, todo);
     t.faces += since(t0);
   }
 }
@@ -1163,7 +1163,7 @@ int run_mesh_model(const std::vector<std::string>& argv) {
   auto t0 = Clock::now();
   std::vector<size_t> all(runs.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
-  mesh_faces(q, model, size, plan, runs, n_threads, weld_tolerance, all);
+  mesh_model_faces(q, model, size, plan, runs, n_threads, weld_tolerance, all);
   t.faces = since(t0);
 
   ModelMesh whole(weld_tolerance);
