@@ -16,9 +16,14 @@ namespace wefm_cad {
 
 namespace {
 
-// The smallest local size a narrow face gets, as a fraction of h: a face narrower than h / 8 keeps
-// slivers (a needle face cannot ask for millions of elements along its long edges).
-constexpr double kNarrowestFraction = 8;
+// A face narrow all along (a needle: a thin step, a strip left between two fillets) is sized by its
+// width down to the size at which its boundary takes kNeedleSegments segments (a needle of length L
+// and width w takes about 2 L / (kWidthFactor w) of them, so one under 1 / 400 as wide as it is
+// long keeps slivers), and not below h / kNarrowestEdgeFraction, as a pinch: no face can ask for
+// millions of elements along its long edges, and its neighbours, graded from them, thousands each.
+// However long the needle, its floor is at most h / kNeedleMostFraction.
+constexpr double kNeedleSegments = 2000;
+constexpr double kNeedleMostFraction = 8;
 // Segments along a strip of width w at this many w have Lo lambda about 0.6 across it (0.87 at 1 w,
 // 0.33 at 5 w): a narrow face or part of a face is meshed at this many times its width.
 constexpr double kWidthFactor = 2.5;
@@ -35,8 +40,7 @@ constexpr double kCoincident = 1e-6;
 // common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40).
 // Elsewhere only down to h / kNarrowestCornerFraction:
 // - a face narrow all along (under h / kNeedleRatio wide: one narrow-face merging could not take)
-//   would ask for thousands of segments along its length, and its tessellation's chords, which may
-//   sag by more than its width, do not tell its width;
+//   goes down to its needle floor (kNeedleSegments) instead;
 // - a face only somewhat narrower in places is graded by its width well enough.
 constexpr double kNarrowestEdgeFraction = 300;
 constexpr double kNarrowestCornerFraction = 32;
@@ -488,6 +492,19 @@ void at_least_three_per_loop(const CadModel& model, std::map<long long, std::vec
   }
 }
 
+// The length of a face's loops: a seam counts twice, as it bounds the domain twice.
+double face_perimeter(const CadFace& f) {
+  double perimeter = 0;
+  for (const auto& loop : f.loops)
+    for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
+  return perimeter;
+}
+
+// The smallest size a face narrower than h gets by its width (kNeedleSegments, kNeedleMostFraction).
+double needle_floor(const CadFace& f, double h) {
+  return std::clamp(face_perimeter(f) / kNeedleSegments, h / kNarrowestEdgeFraction, h / kNeedleMostFraction);
+}
+
 // The face's width at one sample of one of its edges (lower_by_width), and whether the sample lies
 // within kCuspReach h of a cusp (a corner under 10 degrees).
 struct Across {
@@ -529,10 +546,11 @@ bool pinched(const CadFace& f, double h, double floor, const std::vector<Across>
 // not at all beside a cusp. Decided per face: a floor that changed from sample to sample would make
 // the sizes along its edges rise and fall.
 void lower_across_faces(const CadModel& model, double h, const std::vector<std::array<double, 3>>& cusps, std::map<long long, SizeProfile>& profiles) {
-  const double floor = h / kNarrowestEdgeFraction, corner_floor = h / kNarrowestCornerFraction;
+  const double floor = h / kNarrowestEdgeFraction;
   std::vector<Across> across;
   for (const CadFace& f : model.faces) {
     if (!f.error.empty()) continue;
+    const double corner_floor = std::min(h / kNarrowestCornerFraction, face_width(f) < h / kNeedleRatio ? needle_floor(f, h) : h);
     across.clear();
     lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
       bool near_cusp = false;
@@ -695,9 +713,7 @@ double face_area(const CadFace& f) {
 }
 
 double face_width(const CadFace& f) {
-  double perimeter = 0;  // over the loops: a seam counts twice, as it bounds the domain twice
-  for (const auto& loop : f.loops)
-    for (const CadEdgeUse& u : loop) perimeter += chain_length(f, f.edges[static_cast<size_t>(u.edge)]);
+  const double perimeter = face_perimeter(f);
   return perimeter > 0 ? 2 * face_area(f) / perimeter : std::nan("");
 }
 
@@ -744,13 +760,13 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     // whatever its length, while a long narrow strip cannot ask for millions along it.
     const double r = curvature_radius(f);
     const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
-    const double narrow = std::max(kWidthFactor * width, h / kNarrowestFraction);
+    const double narrow = std::max(kWidthFactor * width, needle_floor(f, h));
     const double length = std::isfinite(r) && r > 0 ? face_area(f) / (2 * 3.14159265358979 * r) : h;  // of a tube of radius r
     const bool wraps = std::isfinite(r) && curved == r && length <= h &&
                        std::any_of(f.edges.begin(), f.edges.end(), [](const CadEdge& e) { return e.seam; });
     const double smallest = wraps ? std::min(h / kSmallestRadiusFraction, 2 * 3.14159265358979 * r / kFewestAround)
                                   : h / kSmallestRadiusFraction;
-    sizes[k] = std::clamp(std::min(narrow, curved), smallest, h);
+    sizes[k] = std::min({std::clamp(curved, smallest, h), narrow, h});
   }
   return sizes;
 }
