@@ -37,7 +37,8 @@ constexpr double kCoincident = 1e-6;
 // h / kNarrowestEdgeFraction: a pinch costs a few dozen segments, as they grow back by g per unit
 // length. Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
 // at all: shorter chords there only narrow the corner's triangles, as they turn towards the edges'
-// common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40).
+// common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40);
+// the cusp's fan (fan_from_start) places the nodes next to it instead.
 // Elsewhere only down to h / kNarrowestCornerFraction:
 // - a face narrow all along (under h / kNeedleRatio wide: one narrow-face merging could not take)
 //   goes down to its needle floor (kNeedleSegments) instead;
@@ -545,7 +546,7 @@ bool pinched(const CadFace& f, double h, double floor, const std::vector<Across>
 // width: down to h / kNarrowestEdgeFraction on a pinched face, else to h / kNarrowestCornerFraction;
 // not at all beside a cusp. Decided per face: a floor that changed from sample to sample would make
 // the sizes along its edges rise and fall.
-void lower_across_faces(const CadModel& model, double h, const std::vector<std::array<double, 3>>& cusps, std::map<long long, SizeProfile>& profiles) {
+void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>& cusps, std::map<long long, SizeProfile>& profiles) {
   const double floor = h / kNarrowestEdgeFraction;
   std::vector<Across> across;
   for (const CadFace& f : model.faces) {
@@ -554,7 +555,7 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<std::
     across.clear();
     lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
       bool near_cusp = false;
-      for (const auto& c : cusps) near_cusp = near_cusp || distance(p.data(), c.data()) < kCuspReach * h;
+      for (const Cusp& c : cusps) near_cusp = near_cusp || distance(p.data(), c.point.data()) < kCuspReach * h;
       across.push_back({id, k, width, near_cusp});
     }, profiles);
     const bool pinch = pinched(f, h, floor, across, profiles);
@@ -566,12 +567,54 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<std::
   }
 }
 
+// A fan grows by at least this fraction per segment: a cusp under about 1.1 degrees (two edges
+// leaving a vertex almost tangent) would otherwise take thousands of segments, from h / 300 up.
+constexpr double kFanLeastGrowth = 0.05;
+
+// The sharpest cusp at point p (within tol), in degrees; 0 if none.
+double cusp_degrees(const std::vector<Cusp>& cusps, const double* p, double tol) {
+  double sharpest = 0;
+  for (const Cusp& c : cusps)
+    if (distance(p, c.point.data()) <= tol && c.degrees > 0 && (sharpest == 0 || c.degrees < sharpest)) sharpest = c.degrees;
+  return sharpest;
+}
+
+// Replaces the nodes (arc lengths t, from 0 to the edge's length) near the edge's start, a cusp of
+// `degrees`, by a fan: the first segment `first` (the same on both edges of the cusp: the vertex's
+// size), then each kWidthFactor times the width across the corner where it starts (the triangles
+// across it about right triangles of legs 2.5 : 1, Lo lambda 0.6; legs 1.5 : 1 took U_Joint_2 from
+// 21k to 32k triangles and left nist_ctc_02 worse where its fan meets the other nodes), until that is
+// no shorter than the segments there were, up to `reach` along the edge (half of it when a cusp
+// ends it at both ends). The old nodes from half a segment past the fan on stay (moving them along
+// to follow the fan lowered min lambda on other models: kicad_Inductor 0.380 -> 0.216 at 1/40).
+void fan_from_start(std::vector<double>& t, double first, double degrees, double reach) {
+  const double length = t.back();
+  const double grow = std::max(kFanLeastGrowth, kWidthFactor * 2 * std::sin(0.5 * degrees * 3.14159265358979 / 180));
+  if (!(first > 0) || !(first < 0.5 * length) || t.size() < 3) return;
+  auto spacing = [&](double d) {
+    const size_t k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), d) - t.begin());
+    return k < t.size() && k > 0 ? t[k] - t[k - 1] : t[1] - t[0];
+  };
+  std::vector<double> fan = {0.0, first};
+  for (double d = first;;) {
+    const double step = grow * d;
+    if (step >= spacing(d) || d + step >= reach - 0.5 * step) break;
+    fan.push_back(d += step);
+  }
+  if (fan.size() <= 2) return;
+  const double last = fan.back(), keep_from = last + 0.5 * spacing(last);
+  for (double s : t)
+    if (s >= keep_from) fan.push_back(s);
+  if (fan.back() != length) fan.push_back(length);
+  t = std::move(fan);
+}
+
 // The arc lengths of each edge's nodes with local sizes: each edge's size (`Chain::size`) lowered
 // where a face that has it is narrower than its segments (lower_across_faces; the narrowest places
 // between chain vertices sampled too, add_pinch_samples) and at each model vertex to the smallest
 // segment of the edges meeting there, then graded by g per unit length away from those.
 std::map<long long, std::vector<double>> graded_targets(const CadModel& model, double h, const std::map<long long, Chain>& chains,
-                                                        size_t n_vertices, double g, const std::vector<std::array<double, 3>>& cusps) {
+                                                        size_t n_vertices, double g, const std::vector<Cusp>& cusps) {
   std::map<long long, std::vector<double>> pinches;
   for (const CadFace& f : model.faces)
     if (f.error.empty()) add_pinch_samples(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, pinches);
@@ -610,6 +653,19 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
     const long long n = std::max<long long>(c.closed ? 3 : 1, std::llround(sz.total()));
     std::vector<double>& t = out[id];
     for (long long k = 0; k <= n; ++k) t.push_back(sz.inverse(sz.total() * static_cast<double>(k) / static_cast<double>(n)));
+    if (c.closed || t.size() < 2) continue;
+    const double tol = kCoincident * model.bbox_diagonal;
+    const double theta0 = cusp_degrees(cusps, &c.face->xyz[3 * static_cast<size_t>(c.edge->vertices.front())], tol);
+    const double theta1 = cusp_degrees(cusps, &c.face->xyz[3 * static_cast<size_t>(c.edge->vertices.back())], tol);
+    const double length = t.back(), reach = theta0 > 0 && theta1 > 0 ? 0.5 * length : length;
+    if (theta0 > 0) fan_from_start(t, vertex_size[static_cast<size_t>(c.v0)], theta0, reach);
+    if (theta1 > 0) {
+      for (double& s : t) s = length - s;
+      std::reverse(t.begin(), t.end());
+      fan_from_start(t, vertex_size[static_cast<size_t>(c.v1)], theta1, reach);
+      for (double& s : t) s = length - s;
+      std::reverse(t.begin(), t.end());
+    }
   }
   return out;
 }
@@ -772,7 +828,7 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
 }
 
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h, const std::vector<double>& face_sizes,
-                                                      double gradation, const std::vector<std::array<double, 3>>& cusps) {
+                                                      double gradation, const std::vector<Cusp>& cusps) {
   std::map<long long, double> edge_size;
   for (size_t k = 0; k < model.faces.size(); ++k) {
     const double hf = k < face_sizes.size() ? face_sizes[k] : h;

@@ -52,11 +52,17 @@ EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const Edg
 // than about 20 degrees: 2.5 times the width across, down to h / 300 at a pinch, else h / 32; not
 // within h / 2 of one of the `cusps`) and towards a model vertex where another edge has shorter
 // ones, growing back by g per unit length (1 + g per segment, roughly); 0 keeps them uniform.
-// `cusps` are the points of corners too sharp for any good triangle (under 10 degrees): shorter
-// segments beside one only narrow its triangles' angle there, as the chords turn towards the
-// edges' common tangent.
+// `cusps` are the corners too sharp for any good triangle (under 10 degrees): shorter segments
+// beside one only narrow its triangles' angle there, as the chords turn towards the edges' common
+// tangent. Beyond the first segment from a cusp, which is the same on both its edges, they grow
+// as a fan: each 2.5 times the width across the corner where it starts, so that the triangles
+// across the corner behind its tip keep their shape.
+struct Cusp {
+  std::array<double, 3> point;
+  double degrees = 0;
+};
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h,
                                                       const std::vector<double>& face_sizes = {}, double gradation = 0,
-                                                      const std::vector<std::array<double, 3>>& cusps = {});
+                                                      const std::vector<Cusp>& cusps = {});
 
 }  // namespace wefm_cad

@@ -691,7 +691,7 @@ struct ModelPlan {
   MappedFaces mapping;      // named and four-sided faces meshed mapped (map_four_sided_faces)
   std::vector<size_t> source;  // per face, the earlier face it lies on + 1, or 0 (coincident_faces)
   std::vector<std::vector<FaceCorner>> corners;  // per face, its corners under kFloorCornerDegrees, after merging
-  std::vector<std::array<double, 3>> cusps;      // where those of faces without an import error are
+  std::vector<wefm_cad::Cusp> cusps;              // where those of faces without an import error are, and their angles
   double time = 0;
 };
 
@@ -831,7 +831,8 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
     plan.corners.push_back(sharp_corners(f, kFloorCornerDegrees));
     if (f.error.empty())
       for (const FaceCorner& c : plan.corners.back())
-        plan.cusps.push_back({f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]});
+        plan.cusps.push_back({{f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]},
+                              c.degrees});
   }
   discretise_and_map(q, model, size, plan);
   plan.time = since(t0);

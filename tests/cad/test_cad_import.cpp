@@ -486,12 +486,60 @@ TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also be
   // A cusp (a corner under 10 degrees) within h / 2 of the pinch: the edges do not shrink there by
   // the width (shorter chords would only narrow the cusp's triangles), only grade down towards the
   // strip's 2-wide parts beyond (5 there) by 0.3 per unit length.
-  const std::vector<std::array<double, 3>> cusps = {{50.5, 0.0, 0.0}};
+  const std::vector<wefm_cad::Cusp> cusps = {{{50.5, 0.0, 0.0}, 5.0}};
   const auto beside_cusp = wefm_cad::discretise_model_edges(m, h, sizes, 0.3, cusps);
   for (long long side : {1LL, 3LL}) {
     CAPTURE(side);
     CHECK(shortest(beside_cusp, side) > 1.5);
   }
+}
+
+TEST_CASE("the two edges of a cusp get the same first segment, then a fan growing with the width across") {
+  // A triangle with a 5 degree corner at the origin, sides 100 along x and to (100, 100 tan 5), at
+  // h = 10. The corner is a cusp: its first segment (no triangle there can reach Lo lambda 0.3) is
+  // the same on both edges, so the tip triangle is isosceles, its best; behind it the segments grow
+  // by 2.5 times the width across the corner (2 d sin 2.5 at d from the tip), so the triangles across
+  // keep their shape, instead of segments of about h along a wedge a fraction of h wide.
+  const double degrees = 5, tip = std::tan(degrees * kPi / 180);
+  BRepBuilderAPI_MakePolygon outline(gp_Pnt(0, 0, 0), gp_Pnt(100, 0, 0), gp_Pnt(100, 100 * tip, 0), true);
+  const wefm_cad::CadModel m = load_shape(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), "wefm_cusp_triangle.brep");
+  REQUIRE(m.faces.size() == 1);
+  const double h = 10;
+  const std::vector<double> sizes(1, h);
+  const std::vector<wefm_cad::Cusp> cusps = {{{0.0, 0.0, 0.0}, degrees}};
+  const auto fan = wefm_cad::discretise_model_edges(m, h, sizes, 0.3, cusps);
+  // Distances from the tip of an edge's nodes that leaves it, in order; empty for the far side.
+  auto from_tip = [](const wefm_cad::EdgeNodes& e) {
+    std::vector<double> d;
+    const size_t n = e.xyz.size() / 3;
+    for (size_t k = 0; k < n; ++k) d.push_back(std::hypot(e.xyz[3 * k], e.xyz[3 * k + 1], e.xyz[3 * k + 2]));
+    if (d.front() > 1e-9) std::reverse(d.begin(), d.end());
+    return d.front() > 1e-9 ? std::vector<double>{} : d;
+  };
+  std::vector<double> firsts;
+  int sides = 0;
+  for (const auto& [id, e] : fan) {
+    const std::vector<double> d = from_tip(e);
+    if (d.empty()) continue;
+    ++sides;
+    CAPTURE(id);
+    REQUIRE(d.size() > 3);
+    firsts.push_back(d[1]);
+    const double half = std::sin(0.5 * degrees * kPi / 180);
+    int fanned = 0;
+    // The fan's first segments (where it meets the edge's own sizes, graded by the width as sampled
+    // along the edge, a segment may be up to about twice the fan's).
+    for (size_t k = 1; k < 5 && k + 1 < d.size(); ++k) {
+      const double step = d[k + 1] - d[k], width = 2 * d[k] * half;
+      CAPTURE(k);
+      CHECK(step == doctest::Approx(2.5 * width).epsilon(0.01));
+      ++fanned;
+    }
+    CHECK(fanned == 4);
+  }
+  CHECK(sides == 2);
+  REQUIRE(firsts.size() == 2);
+  CHECK(firsts[0] == doctest::Approx(firsts[1]).epsilon(1e-9));
 }
 
 TEST_CASE("a face bounded by an arc and its chord keeps an area at any size: three segments at least") {
