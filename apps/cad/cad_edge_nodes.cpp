@@ -17,12 +17,15 @@ namespace wefm_cad {
 namespace {
 
 // A face narrow all along (a needle: a thin step, a strip left between two fillets) is sized by its
-// width down to the size at which its boundary takes kNeedleSegments segments (a needle of length L
-// and width w takes about 2 L / (kWidthFactor w) of them, so one under 1 / 400 as wide as it is
-// long keeps slivers), and not below h / kNarrowestEdgeFraction, as a pinch: no face can ask for
-// millions of elements along its long edges, and its neighbours, graded from them, thousands each.
-// However long the needle, its floor is at most h / kNeedleMostFraction.
+// width down to the size at which its boundary takes its share of segments (a needle of length L
+// and width w takes about 2 L / (kWidthFactor w) of them), and not below h / kNarrowestEdgeFraction,
+// as a pinch: no face can ask for millions of elements along its long edges, and its neighbours,
+// graded from them, thousands each. The model's needles share kModelNeedleSegments, each at least
+// kNeedleSegments (one 1 / 400 as wide as it is long then keeps slivers): a lone needle, as a slender
+// sheet meshed on its own, gets its width across. However long the needle, its floor is at most
+// h / kNeedleMostFraction.
 constexpr double kNeedleSegments = 2000;
+constexpr double kModelNeedleSegments = 40000;
 constexpr double kNeedleMostFraction = 8;
 // Segments along a strip of width w at this many w have Lo lambda about 0.6 across it (0.87 at 1 w,
 // 0.33 at 5 w): a narrow face or part of a face is meshed at this many times its width.
@@ -501,9 +504,19 @@ double face_perimeter(const CadFace& f) {
   return perimeter;
 }
 
-// The smallest size a face narrower than h gets by its width (kNeedleSegments, kNeedleMostFraction).
-double needle_floor(const CadFace& f, double h) {
-  return std::clamp(face_perimeter(f) / kNeedleSegments, h / kNarrowestEdgeFraction, h / kNeedleMostFraction);
+// Whether a face's width would size it below h / kNeedleMostFraction: a needle.
+bool needle(const CadFace& f, double h) { return kWidthFactor * face_width(f) < h / kNeedleMostFraction; }
+
+// The segments each needle of the model may take along its boundary (kModelNeedleSegments).
+double needle_segments(const CadModel& model, double h) {
+  const auto needles = std::count_if(model.faces.begin(), model.faces.end(), [&](const CadFace& f) { return f.error.empty() && needle(f, h); });
+  return std::max(kNeedleSegments, kModelNeedleSegments / static_cast<double>(std::max<std::ptrdiff_t>(1, needles)));
+}
+
+// The smallest size a face narrower than h gets by its width, with `segments` along its boundary
+// (needle_segments), between h / kNarrowestEdgeFraction and h / kNeedleMostFraction.
+double needle_floor(const CadFace& f, double h, double segments) {
+  return std::clamp(face_perimeter(f) / segments, h / kNarrowestEdgeFraction, h / kNeedleMostFraction);
 }
 
 // The face's width at one sample of one of its edges (lower_by_width), and whether the sample lies
@@ -547,11 +560,11 @@ bool pinched(const CadFace& f, double h, double floor, const std::vector<Across>
 // not at all beside a cusp. Decided per face: a floor that changed from sample to sample would make
 // the sizes along its edges rise and fall.
 void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>& cusps, std::map<long long, SizeProfile>& profiles) {
-  const double floor = h / kNarrowestEdgeFraction;
+  const double floor = h / kNarrowestEdgeFraction, segments = needle_segments(model, h);
   std::vector<Across> across;
   for (const CadFace& f : model.faces) {
     if (!f.error.empty()) continue;
-    const double corner_floor = std::min(h / kNarrowestCornerFraction, face_width(f) < h / kNeedleRatio ? needle_floor(f, h) : h);
+    const double corner_floor = std::min(h / kNarrowestCornerFraction, face_width(f) < h / kNeedleRatio ? needle_floor(f, h, segments) : h);
     across.clear();
     lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
       bool near_cusp = false;
@@ -802,6 +815,7 @@ EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const Edg
 
 std::vector<double> local_face_sizes(const CadModel& model, double h) {
   std::vector<double> sizes(model.faces.size(), h);
+  const double segments = needle_segments(model, h);
   for (size_t k = 0; k < model.faces.size(); ++k) {
     const CadFace& f = model.faces[k];
     if (!f.error.empty()) continue;
@@ -816,7 +830,7 @@ std::vector<double> local_face_sizes(const CadModel& model, double h) {
     // whatever its length, while a long narrow strip cannot ask for millions along it.
     const double r = curvature_radius(f);
     const double curved = width < kWrapWidth * r && turns_little(f) ? std::sqrt(r * h) : r;
-    const double narrow = std::max(kWidthFactor * width, needle_floor(f, h));
+    const double narrow = std::max(kWidthFactor * width, needle_floor(f, h, segments));
     const double length = std::isfinite(r) && r > 0 ? face_area(f) / (2 * 3.14159265358979 * r) : h;  // of a tube of radius r
     const bool wraps = std::isfinite(r) && curved == r && length <= h &&
                        std::any_of(f.edges.begin(), f.edges.end(), [](const CadEdge& e) { return e.seam; });
