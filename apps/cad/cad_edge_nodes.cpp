@@ -44,7 +44,7 @@ constexpr double kCoincident = 1e-6;
 // the cusp's fan (fan_from_start) places the nodes next to it instead.
 // Elsewhere only down to h / kNarrowestCornerFraction:
 // - a face narrow all along (under h / kNeedleRatio wide: one narrow-face merging could not take)
-//   goes down to its needle floor (kNeedleSegments) instead;
+//   goes down to its needle floor (needle_floor) instead;
 // - a face only somewhat narrower in places is graded by its width well enough.
 constexpr double kNarrowestEdgeFraction = 300;
 constexpr double kNarrowestCornerFraction = 32;

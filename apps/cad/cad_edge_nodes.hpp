@@ -23,7 +23,8 @@ struct EdgeNodes {
 // curved face at most its smaller radius of curvature. Width = 2 area / perimeter (the width of a
 // long strip, the radius of a disk). Floored by a budget of segments along the face's boundary
 // (the model's needles share 40,000, each at least 2,000), between h / 300 and h / 8: a needle face
-// cannot ask for millions of elements along its long edges. A face narrow only in part is left to the edges' local sizes (discretise_model_edges).
+// cannot ask for millions of elements along its long edges. A face narrow only in part is left to
+// the edges' local sizes (discretise_model_edges).
 std::vector<double> local_face_sizes(const CadModel& model, double h);
 
 // The 3D length of an edge's facet chain in a face.

@@ -15,7 +15,7 @@ mesh well enough on their own, are kept so that a face and its copy stay meshed 
 
 Checked: with --no-merge-faces --no-local-size the narrow faces keep slivers (min Lo lambda below 0.3:
 the model does exercise the property; with local sizes alone they are sized by their width, as any
-needle face, at about 1.5 times the triangles of merging); by default the run exits 0, min lambda is at least 0.3, the mesh is closed
+needle face: min lambda 0.59 with 45k triangles, against 0.80 with 8k when merged); by default the run exits 0, min lambda is at least 0.3, the mesh is closed
 (every edge of the written MSH used by exactly two triangles, as a closed solid's are), every
 triangle is in the group of a face of the model, and the report names each merge (the face, the face
 it was merged into, the shared model edges, why) on both the merge list and the receiving face.
