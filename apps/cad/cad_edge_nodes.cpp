@@ -584,42 +584,79 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>
 // leaving a vertex almost tangent) would otherwise take thousands of segments, from h / 300 up.
 constexpr double kFanLeastGrowth = 0.05;
 
+// Whether a cusp is a corner between two sides: not a seam met by itself (a loop going along a
+// seam and back, a corner of 0 degrees with no wedge to fan).
+bool wedge(const Cusp& c) { return c.edges[0] < 0 || c.edges[0] != c.edges[1]; }
+
 // The sharpest cusp at point p (within tol), in degrees; 0 if none.
 double cusp_degrees(const std::vector<Cusp>& cusps, const double* p, double tol) {
   double sharpest = 0;
   for (const Cusp& c : cusps)
-    if (distance(p, c.point.data()) <= tol && c.degrees > 0 && (sharpest == 0 || c.degrees < sharpest)) sharpest = c.degrees;
+    if (wedge(c) && distance(p, c.point.data()) <= tol && c.degrees > 0 && (sharpest == 0 || c.degrees < sharpest)) sharpest = c.degrees;
   return sharpest;
 }
 
-// Replaces the nodes (arc lengths t, from 0 to the edge's length) near the edge's start, a cusp of
-// `degrees`, by a fan: the first segment `first` (the same on both edges of the cusp: the vertex's
-// size), then each kWidthFactor times the width across the corner where it starts (the triangles
-// across it about right triangles of legs 2.5 : 1, Lo lambda 0.6; legs 1.5 : 1 took U_Joint_2 from
-// 21k to 32k triangles and left nist_ctc_02 worse where its fan meets the other nodes), until that is
-// no shorter than the segments there were, up to `reach` along the edge (half of it when a cusp
-// ends it at both ends). The old nodes from half a segment past the fan on stay (moving them along
-// to follow the fan lowered min lambda on other models: kicad_Inductor 0.380 -> 0.216 at 1/40).
-void fan_from_start(std::vector<double>& t, double first, double degrees, double reach) {
+// Replaces the nodes (arc lengths t, from 0 to the edge's length) near the edge's start by a fan
+// from a cusp of `degrees` that lies `offset` behind the start, along the corner's side (0: the start
+// is the cusp; more: the side's first edge was a single segment, and this edge goes on from it).
+// From the cusp itself the first segment is `first` (the same on both edges of the cusp: the
+// vertex's size); then each segment is kWidthFactor times the width across the corner where it
+// starts (the triangles across it about right triangles of legs 2.5 : 1, Lo lambda 0.6; legs
+// 1.5 : 1 took U_Joint_2 from 21k to 32k triangles and left nist_ctc_02 worse where its fan meets
+// the other nodes), until that is no shorter than the segments there were, up to `reach` along the
+// edge (half of it when a cusp ends it at both ends). The old nodes from half a segment past the
+// fan on stay (moving them along to follow the fan lowered min lambda on other models:
+// kicad_Inductor 0.380 -> 0.216 at 1/40).
+void fan_from_start(std::vector<double>& t, double offset, double first, double degrees, double reach) {
   const double length = t.back();
   const double grow = std::max(kFanLeastGrowth, kWidthFactor * 2 * std::sin(0.5 * degrees * 3.14159265358979 / 180));
-  if (!(first > 0) || !(first < 0.5 * length) || t.size() < 3) return;
-  auto spacing = [&](double d) {
-    const size_t k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), d) - t.begin());
+  if (t.size() < 3 || (offset == 0 && !(first > 0 && first < 0.5 * length))) return;
+  auto spacing = [&](double s) {
+    const size_t k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), s) - t.begin());
     return k < t.size() && k > 0 ? t[k] - t[k - 1] : t[1] - t[0];
   };
-  std::vector<double> fan = {0.0, first};
-  for (double d = first;;) {
-    const double step = grow * d;
-    if (step >= spacing(d) || d + step >= reach - 0.5 * step) break;
-    fan.push_back(d += step);
+  std::vector<double> fan = {0.0};
+  double s = 0;
+  if (offset == 0) fan.push_back(s = first);
+  for (;;) {
+    const double step = grow * (offset + s);
+    if (step >= spacing(s) || s + step >= reach - 0.5 * step) break;
+    fan.push_back(s += step);
   }
-  if (fan.size() <= 2) return;
-  const double last = fan.back(), keep_from = last + 0.5 * spacing(last);
-  for (double s : t)
-    if (s >= keep_from) fan.push_back(s);
+  if (fan.size() <= (offset == 0 ? 2u : 1u)) return;
+  const double keep_from = s + 0.5 * spacing(s);
+  for (double x : t)
+    if (x >= keep_from) fan.push_back(x);
   if (fan.back() != length) fan.push_back(length);
   t = std::move(fan);
+}
+
+// fan_from_start from the edge's end instead.
+void fan_from_end(std::vector<double>& t, double offset, double first, double degrees, double reach) {
+  const double length = t.back();
+  for (double& x : t) x = length - x;
+  std::reverse(t.begin(), t.end());
+  fan_from_start(t, offset, first, degrees, reach);
+  for (double& x : t) x = length - x;
+  std::reverse(t.begin(), t.end());
+}
+
+// Where a side of a cusp is a single segment, the fan goes on along the edge of the face's loop
+// that follows it (`Cusp::beyond`), from its shared vertex, as if that edge began at the cusp.
+void fan_beyond_cusps(const std::map<long long, Chain>& chains, const std::vector<Cusp>& cusps, double tol,
+                      std::map<long long, std::vector<double>>& out) {
+  for (const Cusp& c : cusps)
+    for (size_t side = 0; side < 2 && wedge(c); ++side) {
+      const auto e = chains.find(c.edges[side]), n = chains.find(c.beyond[side]);
+      if (e == chains.end() || n == chains.end() || e == n || n->second.closed || out.at(e->first).size() != 2) continue;
+      const Chain& ce = e->second;
+      const bool tip_at_start = distance(&ce.face->xyz[3 * static_cast<size_t>(ce.edge->vertices.front())], c.point.data()) <= tol;
+      const int far = tip_at_start ? ce.v1 : ce.v0;
+      std::vector<double>& t = out.at(n->first);
+      const double first = out.at(e->first).back();
+      if (n->second.v0 == far) fan_from_start(t, first, first, c.degrees, t.back());
+      else if (n->second.v1 == far) fan_from_end(t, first, first, c.degrees, t.back());
+    }
 }
 
 // The arc lengths of each edge's nodes with local sizes: each edge's size (`Chain::size`) lowered
@@ -670,16 +707,11 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
     const double tol = kCoincident * model.bbox_diagonal;
     const double theta0 = cusp_degrees(cusps, &c.face->xyz[3 * static_cast<size_t>(c.edge->vertices.front())], tol);
     const double theta1 = cusp_degrees(cusps, &c.face->xyz[3 * static_cast<size_t>(c.edge->vertices.back())], tol);
-    const double length = t.back(), reach = theta0 > 0 && theta1 > 0 ? 0.5 * length : length;
-    if (theta0 > 0) fan_from_start(t, vertex_size[static_cast<size_t>(c.v0)], theta0, reach);
-    if (theta1 > 0) {
-      for (double& s : t) s = length - s;
-      std::reverse(t.begin(), t.end());
-      fan_from_start(t, vertex_size[static_cast<size_t>(c.v1)], theta1, reach);
-      for (double& s : t) s = length - s;
-      std::reverse(t.begin(), t.end());
-    }
+    const double reach = theta0 > 0 && theta1 > 0 ? 0.5 * t.back() : t.back();
+    if (theta0 > 0) fan_from_start(t, 0, vertex_size[static_cast<size_t>(c.v0)], theta0, reach);
+    if (theta1 > 0) fan_from_end(t, 0, vertex_size[static_cast<size_t>(c.v1)], theta1, reach);
   }
+  fan_beyond_cusps(chains, cusps, kCoincident * model.bbox_diagonal, out);
   return out;
 }
 

@@ -58,9 +58,13 @@ EdgeNodes recount_edge_nodes(const CadFace& face, const CadEdge& edge, const Edg
 // tangent. Beyond the first segment from a cusp, which is the same on both its edges, they grow
 // as a fan: each 2.5 times the width across the corner where it starts, so that the triangles
 // across the corner behind its tip keep their shape.
+// Where a side of the corner is a single segment, the fan goes on along the next edge of the loop
+// (`beyond`).
 struct Cusp {
   std::array<double, 3> point;
   double degrees = 0;
+  std::array<long long, 2> edges{{-1, -1}};   // the model edges meeting at the corner
+  std::array<long long, 2> beyond{{-1, -1}};  // per side, the edge of the loop past its far end, or -1
 };
 std::map<long long, EdgeNodes> discretise_model_edges(const CadModel& model, double h,
                                                       const std::vector<double>& face_sizes = {}, double gradation = 0,

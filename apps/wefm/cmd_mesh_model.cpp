@@ -832,7 +832,7 @@ int plan_model(const MeshModelRequest& q, wefm_cad::CadModel& model, double size
     if (f.error.empty())
       for (const FaceCorner& c : plan.corners.back())
         plan.cusps.push_back({{f.xyz[3 * static_cast<size_t>(c.vertex)], f.xyz[3 * static_cast<size_t>(c.vertex) + 1], f.xyz[3 * static_cast<size_t>(c.vertex) + 2]},
-                              c.degrees});
+                              c.degrees, c.edges, edges_beyond(f, c)});
   }
   discretise_and_map(q, model, size, plan);
   plan.time = since(t0);

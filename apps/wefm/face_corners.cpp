@@ -71,6 +71,19 @@ std::vector<FaceCorner> face_corners(const wefm_cad::CadFace& f) {
   return out;
 }
 
+std::array<long long, 2> edges_beyond(const wefm_cad::CadFace& f, const FaceCorner& c) {
+  const auto& loop = f.loops[c.loop];
+  const size_t n = loop.size();
+  auto degenerate = [&](size_t k) { return f.edges[static_cast<size_t>(loop[k].edge)].vertices.size() < 2; };
+  size_t before = (c.use + n - 1) % n, next = (c.use + 1) % n;
+  if (degenerate(before)) before = (before + n - 1) % n;
+  if (degenerate(next)) next = (next + 1) % n;
+  size_t after = (next + 1) % n;
+  if (degenerate(after)) after = (after + 1) % n;
+  auto id = [&](size_t k) { return k == c.use || k == next ? -1LL : f.edges[static_cast<size_t>(loop[k].edge)].id; };
+  return {id(before), id(after)};
+}
+
 std::vector<FaceCorner> sharp_corners(const wefm_cad::CadFace& f, double below) {
   std::vector<FaceCorner> out = face_corners(f);
   out.erase(std::remove_if(out.begin(), out.end(), [&](const FaceCorner& c) { return !(c.degrees < below); }), out.end());

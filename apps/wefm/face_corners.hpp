@@ -38,4 +38,9 @@ std::vector<FaceCorner> face_corners(const wefm_cad::CadFace& f);
 // The face's corners sharper than `below` degrees, sharpest first.
 std::vector<FaceCorner> sharp_corners(const wefm_cad::CadFace& f, double below);
 
+// Per side of a corner (its two edges, in FaceCorner::edges order), the model edge of the loop past
+// that side's far end (the one before the first, the one after the second; poles skipped), or -1
+// where the loop has no other edge.
+std::array<long long, 2> edges_beyond(const wefm_cad::CadFace& f, const FaceCorner& c);
+
 }  // namespace wefm_cli

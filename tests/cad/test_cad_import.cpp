@@ -542,6 +542,50 @@ TEST_CASE("the two edges of a cusp get the same first segment, then a fan growin
   CHECK(firsts[0] == doctest::Approx(firsts[1]).epsilon(1e-9));
 }
 
+TEST_CASE("a cusp's fan goes on along the next edge where a side of the corner is a single segment") {
+  // The 5 degree triangle of the test above, its upper side split 2 from the tip: the tip's short
+  // edge is the side's first segment (the vertex's size), and the long edge after it carries on the
+  // fan from 2 behind its start, as one edge would. Else its segments there keep about its own
+  // spacing over a wedge a fraction of that wide.
+  const double degrees = 5, rad = degrees * kPi / 180;
+  BRepBuilderAPI_MakePolygon outline;
+  for (const gp_Pnt& p : {gp_Pnt(0, 0, 0), gp_Pnt(100, 0, 0), gp_Pnt(100, 100 * std::tan(rad), 0), gp_Pnt(2 * std::cos(rad), 2 * std::sin(rad), 0)})
+    outline.Add(p);
+  outline.Close();
+  const wefm_cad::CadModel m = load_shape(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), "wefm_cusp_split_side.brep");
+  REQUIRE(m.faces.size() == 1);
+  REQUIRE(m.faces[0].edges.size() == 4);
+  const double h = 10;
+  // The model edge ids of the tip's short side and of the long edge after it, by their ends.
+  long long tip_side = -1, long_side = -1, bottom = -1;
+  for (const wefm_cad::CadEdge& e : m.faces[0].edges) {
+    const double* a = &m.faces[0].xyz[3 * static_cast<size_t>(e.vertices.front())];
+    const double* b = &m.faces[0].xyz[3 * static_cast<size_t>(e.vertices.back())];
+    const bool at_tip = std::hypot(a[0], a[1]) < 1e-9 || std::hypot(b[0], b[1]) < 1e-9;
+    const bool far = a[0] > 99 || b[0] > 99;
+    if (at_tip && far) bottom = e.id;
+    else if (at_tip) tip_side = e.id;
+    else if (std::hypot(a[0], a[1]) < 3 || std::hypot(b[0], b[1]) < 3) long_side = e.id;
+  }
+  REQUIRE(tip_side >= 0);
+  REQUIRE(long_side >= 0);
+  REQUIRE(bottom >= 0);
+  wefm_cad::Cusp cusp{{0.0, 0.0, 0.0}, degrees, {tip_side, bottom}, {long_side, -1}};
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3, {cusp});
+  REQUIRE(nodes.at(tip_side).xyz.size() == 6);  // a single segment
+  // Distances from the tip of the long side's nodes, from its end at the short side on.
+  const std::vector<double>& x = nodes.at(long_side).xyz;
+  std::vector<double> d;
+  for (size_t k = 0; k < x.size() / 3; ++k) d.push_back(std::hypot(x[3 * k], x[3 * k + 1], x[3 * k + 2]));
+  if (d.front() > d.back()) std::reverse(d.begin(), d.end());
+  REQUIRE(d.front() == doctest::Approx(2.0).epsilon(1e-6));
+  REQUIRE(d.size() > 6);
+  for (size_t k = 0; k < 4; ++k) {
+    CAPTURE(k);
+    CHECK(d[k + 1] - d[k] == doctest::Approx(2.5 * 2 * d[k] * std::sin(0.5 * rad)).epsilon(0.01));
+  }
+}
+
 TEST_CASE("a face bounded by an arc and its chord keeps an area at any size: three segments at least") {
   // A circular segment: an arc of radius 10 over 40 degrees and its chord (6.84 long, 0.60 high).
   // At h = 1000 each edge would be one segment, the arc's the same line as the chord: a face of no
