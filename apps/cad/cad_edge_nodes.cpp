@@ -528,13 +528,13 @@ struct Across {
   bool near_cusp;
 };
 
-// Whether face f is pinched: somewhere away from a cusp narrower than kPinchFraction of its width
-// (2 area / perimeter), and only over short stretches. Along every edge, each run of samples that
+// Whether face f, `wide` wide (2 area / perimeter), is pinched: somewhere away from a cusp narrower
+// than kPinchFraction of that, and only over short stretches. Along every edge, each run of samples that
 // narrow would take at most kPinchSegments segments at kWidthFactor times its width (down to
 // `floor`): a long narrow arm of a face would take hundreds. A face under h / kNeedleRatio wide is
 // narrow all along, not pinched.
-bool pinched(const CadFace& f, double h, double floor, const std::vector<Across>& across, const std::map<long long, SizeProfile>& profiles) {
-  const double wide = face_width(f), pinch = kPinchFraction * wide;
+bool pinched(double wide, double h, double floor, const std::vector<Across>& across, const std::map<long long, SizeProfile>& profiles) {
+  const double pinch = kPinchFraction * wide;
   if (!(wide >= h / kNeedleRatio)) return false;
   std::map<long long, std::vector<std::pair<size_t, double>>> narrow;
   for (const Across& x : across)
@@ -564,14 +564,15 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>
   std::vector<Across> across;
   for (const CadFace& f : model.faces) {
     if (!f.error.empty()) continue;
-    const double corner_floor = std::min(h / kNarrowestCornerFraction, face_width(f) < h / kNeedleRatio ? needle_floor(f, h, segments) : h);
+    const double wide = face_width(f);
+    const double corner_floor = std::min(h / kNarrowestCornerFraction, wide < h / kNeedleRatio ? needle_floor(f, h, segments) : h);
     across.clear();
     lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
       bool near_cusp = false;
       for (const Cusp& c : cusps) near_cusp = near_cusp || distance(p.data(), c.point.data()) < kCuspReach * h;
       across.push_back({id, k, width, near_cusp});
     }, profiles);
-    const bool pinch = pinched(f, h, floor, across, profiles);
+    const bool pinch = pinched(wide, h, floor, across, profiles);
     for (const Across& x : across) {
       if (x.near_cusp) continue;
       double& v = profiles.at(x.id).v[x.k];
@@ -597,33 +598,33 @@ double cusp_degrees(const std::vector<Cusp>& cusps, const double* p, double tol)
 }
 
 // Replaces the nodes (arc lengths t, from 0 to the edge's length) near the edge's start by a fan
-// from a cusp of `degrees` that lies `offset` behind the start, along the corner's side (0: the start
-// is the cusp; more: the side's first edge was a single segment, and this edge goes on from it).
-// From the cusp itself the first segment is `first` (the same on both edges of the cusp: the
-// vertex's size); then each segment is kWidthFactor times the width across the corner where it
+// from a cusp of `degrees`. From the cusp the first segment is `first` (the same on both edges of the
+// cusp: the vertex's size). The cusp is the edge's start, or, `continued`, lies one segment behind
+// it: the side's first edge was that single segment, of length `first`, and this edge goes on from
+// it. Then each segment is kWidthFactor times the width across the corner where it
 // starts (the triangles across it about right triangles of legs 2.5 : 1, Lo lambda 0.6; legs
 // 1.5 : 1 took U_Joint_2 from 21k to 32k triangles and left nist_ctc_02 worse where its fan meets
 // the other nodes), until that is no shorter than the segments there were, up to `reach` along the
 // edge (half of it when a cusp ends it at both ends). The old nodes from half a segment past the
 // fan on stay (moving them along to follow the fan lowered min lambda on other models:
 // kicad_Inductor 0.380 -> 0.216 at 1/40).
-void fan_from_start(std::vector<double>& t, double offset, double first, double degrees, double reach) {
-  const double length = t.back();
+void fan_from_start(std::vector<double>& t, double first, bool continued, double degrees, double reach) {
+  const double length = t.back(), offset = continued ? first : 0;
   const double grow = std::max(kFanLeastGrowth, kWidthFactor * 2 * std::sin(0.5 * degrees * 3.14159265358979 / 180));
-  if (t.size() < 3 || (offset == 0 && !(first > 0 && first < 0.5 * length))) return;
+  if (t.size() < 3 || !(first > 0) || (!continued && !(first < 0.5 * length))) return;
   auto spacing = [&](double s) {
     const size_t k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), s) - t.begin());
     return k < t.size() && k > 0 ? t[k] - t[k - 1] : t[1] - t[0];
   };
   std::vector<double> fan = {0.0};
   double s = 0;
-  if (offset == 0) fan.push_back(s = first);
+  if (!continued) fan.push_back(s = first);
   for (;;) {
     const double step = grow * (offset + s);
     if (step >= spacing(s) || s + step >= reach - 0.5 * step) break;
     fan.push_back(s += step);
   }
-  if (fan.size() <= (offset == 0 ? 2u : 1u)) return;
+  if (fan.size() <= (continued ? 1u : 2u)) return;
   const double keep_from = s + 0.5 * spacing(s);
   for (double x : t)
     if (x >= keep_from) fan.push_back(x);
@@ -632,11 +633,11 @@ void fan_from_start(std::vector<double>& t, double offset, double first, double 
 }
 
 // fan_from_start from the edge's end instead.
-void fan_from_end(std::vector<double>& t, double offset, double first, double degrees, double reach) {
+void fan_from_end(std::vector<double>& t, double first, bool continued, double degrees, double reach) {
   const double length = t.back();
   for (double& x : t) x = length - x;
   std::reverse(t.begin(), t.end());
-  fan_from_start(t, offset, first, degrees, reach);
+  fan_from_start(t, first, continued, degrees, reach);
   for (double& x : t) x = length - x;
   std::reverse(t.begin(), t.end());
 }
@@ -654,8 +655,8 @@ void fan_beyond_cusps(const std::map<long long, Chain>& chains, const std::vecto
       const int far = tip_at_start ? ce.v1 : ce.v0;
       std::vector<double>& t = out.at(n->first);
       const double first = out.at(e->first).back();
-      if (n->second.v0 == far) fan_from_start(t, first, first, c.degrees, t.back());
-      else if (n->second.v1 == far) fan_from_end(t, first, first, c.degrees, t.back());
+      if (n->second.v0 == far) fan_from_start(t, first, true, c.degrees, t.back());
+      else if (n->second.v1 == far) fan_from_end(t, first, true, c.degrees, t.back());
     }
 }
 
@@ -692,6 +693,7 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
       vertex_size[static_cast<size_t>(v)] = std::min({vertex_size[static_cast<size_t>(v)], u, end});
   }
   std::map<long long, std::vector<double>> out;
+  const double tol = kCoincident * model.bbox_diagonal;
   for (auto& [id, p] : profiles) {
     const Chain& c = chains.at(id);
     const std::vector<double> cap = p.v;
@@ -704,14 +706,13 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
     std::vector<double>& t = out[id];
     for (long long k = 0; k <= n; ++k) t.push_back(sz.inverse(sz.total() * static_cast<double>(k) / static_cast<double>(n)));
     if (c.closed || t.size() < 2) continue;
-    const double tol = kCoincident * model.bbox_diagonal;
     const double theta0 = cusp_degrees(cusps, &c.face->xyz[3 * static_cast<size_t>(c.edge->vertices.front())], tol);
     const double theta1 = cusp_degrees(cusps, &c.face->xyz[3 * static_cast<size_t>(c.edge->vertices.back())], tol);
     const double reach = theta0 > 0 && theta1 > 0 ? 0.5 * t.back() : t.back();
-    if (theta0 > 0) fan_from_start(t, 0, vertex_size[static_cast<size_t>(c.v0)], theta0, reach);
-    if (theta1 > 0) fan_from_end(t, 0, vertex_size[static_cast<size_t>(c.v1)], theta1, reach);
+    if (theta0 > 0) fan_from_start(t, vertex_size[static_cast<size_t>(c.v0)], false, theta0, reach);
+    if (theta1 > 0) fan_from_end(t, vertex_size[static_cast<size_t>(c.v1)], false, theta1, reach);
   }
-  fan_beyond_cusps(chains, cusps, kCoincident * model.bbox_diagonal, out);
+  fan_beyond_cusps(chains, cusps, tol, out);
   return out;
 }
 

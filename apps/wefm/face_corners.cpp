@@ -17,6 +17,15 @@ std::vector<int32_t> chain(const wefm_cad::CadFace& f, const wefm_cad::CadEdgeUs
   return c;
 }
 
+// The use one step along the loop from use k (step +1: the next, -1: the one before), a pole (a
+// degenerate edge) passed over: a patch narrowing to a point has its corner across the pole.
+size_t step_use(const wefm_cad::CadFace& f, const std::vector<wefm_cad::CadEdgeUse>& loop, size_t k, int step) {
+  const size_t n = loop.size(), by = step > 0 ? 1 : n - 1;
+  size_t j = (k + by) % n;
+  if (f.edges[static_cast<size_t>(loop[j].edge)].vertices.size() < 2) j = (j + by) % n;
+  return j;
+}
+
 }  // namespace
 
 std::array<double, 3> facet_cross(const wefm_cad::CadFace& f, size_t t) {
@@ -52,10 +61,7 @@ std::vector<FaceCorner> face_corners(const wefm_cad::CadFace& f) {
   for (size_t l = 0; l < f.loops.size(); ++l) {
     const auto& loop = f.loops[l];
     for (size_t k = 0; k < loop.size(); ++k) {
-      // A pole (a degenerate edge) between two edges is a corner of the two: a patch narrowing to
-      // a point.
-      size_t next = (k + 1) % loop.size();
-      if (f.edges[static_cast<size_t>(loop[next].edge)].vertices.size() < 2) next = (next + 1) % loop.size();
+      const size_t next = step_use(f, loop, k, +1);
       const auto in = chain(f, loop[k]), out_chain = chain(f, loop[next]);
       if (in.size() < 2 || out_chain.size() < 2 || in.back() != out_chain.front()) continue;
       const double *p = at(f, in[in.size() - 2]), *q = at(f, in.back()), *r = at(f, out_chain[1]);
@@ -73,13 +79,7 @@ std::vector<FaceCorner> face_corners(const wefm_cad::CadFace& f) {
 
 std::array<long long, 2> edges_beyond(const wefm_cad::CadFace& f, const FaceCorner& c) {
   const auto& loop = f.loops[c.loop];
-  const size_t n = loop.size();
-  auto degenerate = [&](size_t k) { return f.edges[static_cast<size_t>(loop[k].edge)].vertices.size() < 2; };
-  size_t before = (c.use + n - 1) % n, next = (c.use + 1) % n;
-  if (degenerate(before)) before = (before + n - 1) % n;
-  if (degenerate(next)) next = (next + 1) % n;
-  size_t after = (next + 1) % n;
-  if (degenerate(after)) after = (after + 1) % n;
+  const size_t before = step_use(f, loop, c.use, -1), next = step_use(f, loop, c.use, +1), after = step_use(f, loop, next, +1);
   auto id = [&](size_t k) { return k == c.use || k == next ? -1LL : f.edges[static_cast<size_t>(loop[k].edge)].id; };
   return {id(before), id(after)};
 }
