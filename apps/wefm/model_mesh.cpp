@@ -171,12 +171,14 @@ void ModelMesh::expect_model_edge(const std::vector<double>& nodes, int face_use
   // A node no face mesh holds (its faces failed) leaves its segments undeclared: their absence is
   // then counted where the faces' other edges are, not here.
   // A kink node drop_fins took off the mesh is passed over: the edge runs along the chord there.
-  // Never an end node: a model vertex left out of the mesh is a gap.
+  // So is a model vertex it took off (a narrow face merged across a sharp edge folds around the
+  // corner of the face beyond, and both close the corner with the same triangle): no gap is hidden,
+  // since the chord left is an edge like any other, counted open if fewer than two triangles use it.
   const size_t n = nodes.size() / 3;
   int32_t prev = -1;
   for (size_t k = 0; k < n; ++k) {
     const int32_t b = find(&nodes[3 * k]);
-    if (b >= 0 && k > 0 && k + 1 < n && fin_nodes_.count(b)) continue;
+    if (b >= 0 && fin_nodes_.count(b)) continue;
     if (prev >= 0 && b >= 0 && prev != b) expected_uses_[pair_key(prev, b)] += face_uses;
     prev = b;
   }

@@ -83,10 +83,10 @@ class ModelMesh {
   int64_t add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
                    const std::vector<int>& triangle_tags = {}, const std::vector<int32_t>& quad_of = {});
 
-  // Two faces meeting at a sharp kink of their common edge can each close it with the same triangle
-  // (three consecutive nodes of the edge for corners), once each way: a fin of no volume, the kink's
-  // node on nothing else. Both are dropped, the faces then meet along the chord, and the kink's node
-  // is left out of its edge (expect_model_edge). Faces meshed alike (`alike`: pairs of face tags)
+  // Two faces meeting at a sharp kink of their common edge, or at a corner between two of their
+  // common edges, can each close it with the same triangle, once each way: a fin of no volume, the
+  // kink's node on nothing else. Both are dropped, the faces then meet along the chord, and the
+  // kink's node is left out of its edges (expect_model_edge). Faces meshed alike (`alike`: pairs of face tags)
   // keep theirs. Call after the faces are added, before the model edges are declared. Returns the
   // triangles dropped.
   int64_t drop_fins(const std::set<std::pair<int, int>>& alike);

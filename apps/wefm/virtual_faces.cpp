@@ -36,6 +36,16 @@ constexpr double kNeedleRatio = 100;
 // not. A triangle spanning a strip of width w < h / 30 at such a kink leaves the surface by at most
 // w sin(25 deg) < h / 70.
 constexpr double kSharpDegrees = 50;
+// A face narrower than h / kSliverRatio merges across a sharper edge too, a step's right angle
+// included: a triangle spanning it leaves the surface by at most its width, under h / 300. Kept, it
+// meshes with slivers or takes hundreds of segments along its length (nodeocc_kuka's 0.00065-wide
+// step face 562 at h = 53: min Lo lambda 0.005). Wider needles keep kSharpDegrees: at 1/20 of the
+// diagonal pyocc_11752 and kicad_Inductor have hundreds of thread faces between h / 300 and h / 100
+// wide, and merged across their sharp edges they took 95 s and 11 s in trials for no better minimum.
+// Only a face folding back onto its neighbour is left out: facet normals err by up to BRepMesh's
+// angular deflection (0.5 rad), so a right angle can measure up to about 120 degrees.
+constexpr double kSliverRatio = 300;
+constexpr double kNeedleSharpDegrees = 150;
 // A face merged for a sharp corner is wide: triangles of size h straddle the edge left out, and
 // leave the surface by up to h / 2 sin(turn / 2), h / 8 at this turn: the chord deviation that the
 // local size allows on a curved face (h at most its radius, h^2 / 8r).
@@ -359,9 +369,9 @@ struct Candidate {
 };
 
 // The neighbours of face i it could merge with: across edges used once by i and once by the
-// neighbour and by no other face, smoothest first; sharp ones left out.
+// neighbour and by no other face, smoothest first; those across a turn above max_turn left out.
 std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, size_t i,
-                                  const std::map<long long, std::vector<size_t>>& users, double tol) {
+                                  const std::map<long long, std::vector<size_t>>& users, double tol, double max_turn) {
   std::map<size_t, Candidate> by_face;
   const wefm_cad::CadFace& f = faces[i];
   for (size_t e = 0; e < f.edges.size(); ++e) {
@@ -384,7 +394,7 @@ std::vector<Candidate> neighbours(const std::vector<wefm_cad::CadFace>& faces, s
   }
   std::vector<Candidate> out;
   for (auto& [j, c] : by_face)
-    if (c.turn <= kSharpDegrees) out.push_back(std::move(c));
+    if (c.turn <= max_turn) out.push_back(std::move(c));
   std::sort(out.begin(), out.end(), [](const Candidate& x, const Candidate& y) { return x.dihedral < y.dihedral; });
   return out;
 }
@@ -421,8 +431,7 @@ class Merger {
       return false;
     }
     std::string why = "no neighbour across an edge turning by at most " + std::to_string(static_cast<int>(max_turn)) + " degrees";
-    for (const Candidate& c : neighbours(faces_, i, users_, tol_)) {
-      if (c.turn > max_turn) continue;
+    for (const Candidate& c : neighbours(faces_, i, users_, tol_, max_turn)) {
       if (!across.empty() && std::none_of(c.ids.begin(), c.ids.end(), [&](long long id) { return across.count(id) > 0; })) continue;
       const size_t j = c.neighbour;
       if (narrow(j)) {
@@ -505,7 +514,7 @@ VirtualTopology merge_narrow_faces(wefm_cad::CadModel& model, double h, std::vec
     if (!(w < h / kNarrowRatio)) continue;
     char reason[96];
     std::snprintf(reason, sizeof reason, "narrow: width %.3g below h / %g", w, kNarrowRatio);
-    merger.merge(i, {}, kSharpDegrees, w, reason, w >= h / kNeedleRatio);
+    merger.merge(i, {}, w < h / kSliverRatio ? kNeedleSharpDegrees : kSharpDegrees, w, reason, w >= h / kNeedleRatio);
   }
   for (size_t i = 0; i < n; ++i) {
     if (!merger.alive(i)) continue;

@@ -20,7 +20,16 @@ needle face: min lambda 0.59 with 45k triangles, against 0.80 with 8k when merge
 triangle is in the group of a face of the model, and the report names each merge (the face, the face
 it was merged into, the shared model edges, why) on both the merge list and the receiving face.
 
-usage: merge_faces_test.py WEFM MODEL.brep TWICE.brep
+step_box.brep: a 10 x 6 x 4 box whose top steps up by 0.0007 over half its length (h / 440 at 1/40 of
+the diagonal): the step is a needle at right angles to both its neighbours (Gmsh 4.8, OpenCASCADE):
+    Box(1) = {0, 0, 0, 10, 6, 4}; Box(2) = {0, 0, 0, 5, 6, 4.0007};
+    BooleanUnion{ Volume{1}; Delete; }{ Volume{2}; Delete; } Save "step_box.brep";
+A face under h / 300 wide merges across any edge short of a fold back (a triangle across it leaves the
+surface by at most its width): the step is merged into a top face across 90 degrees, the model is meshed closed with
+min lambda at least 0.3 and far fewer triangles than with the step meshed on its own (sized by its
+width), where the ends of the merged step meet the side walls' corners.
+
+usage: merge_faces_test.py WEFM MODEL.brep TWICE.brep STEP.brep
 """
 import sys
 import tempfile
@@ -58,8 +67,25 @@ def check_twice(wefm, model, tmp):
           + ", ".join(f"f{m['face']} kept" for m in wider))
 
 
+def check_step(wefm, model, tmp):
+    alone, _ = run(wefm, model, tmp, "step-alone", "--no-merge-faces")
+    r, msh = run(wefm, model, tmp, "step")
+    c = r["conformity"]
+    assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0 and c["zero_area_triangles"] == 0, c
+    h = r["size"]
+    merges = [m for m in r["merged_faces"] if m["merged_into"]]
+    assert len(merges) == 1 and merges[0]["width"] < h / 100 and merges[0]["dihedral_degrees"] > 80, r["merged_faces"]
+    faces, _ = read_msh_faces(msh)
+    uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for tris in faces.values() for t in tris for i in range(3))
+    assert set(uses.values()) == {2}, f"open or non-manifold edges: {Counter(uses.values())}"
+    assert r["lambda_min"] >= 0.3, r["lambda_min"]
+    assert 4 * r["triangles"] < alone["triangles"], (r["triangles"], alone["triangles"])
+    print(f"step: merged f{merges[0]['face']} into f{merges[0]['merged_into']} across {merges[0]['dihedral_degrees']:.0f} deg; "
+          f"{alone['triangles']} triangles (min {alone['lambda_min']:.3f}) -> {r['triangles']} (min {r['lambda_min']:.3f})")
+
+
 def main():
-    wefm, model, twice = sys.argv[1:4]
+    wefm, model, twice, step = sys.argv[1:5]
     with tempfile.TemporaryDirectory() as tmp:
         strict, _ = run(wefm, model, tmp, "strict", "--no-merge-faces", "--no-local-size")
         assert strict["merged_faces"] == [], strict["merged_faces"]
@@ -86,6 +112,7 @@ def main():
               + ", ".join(f"f{m['face']} into f{m['merged_into']} ({m['dihedral_degrees']:.0f} deg)" for m in merges))
         assert len(merges) == 2, f"expected the fillet and the chamfer merged: {merges}"
         check_twice(wefm, twice, tmp)
+        check_step(wefm, step, tmp)
     return 0
 
 
