@@ -86,9 +86,9 @@ class ModelMesh {
   // Two faces meeting at a sharp kink of their common edge, or at a corner between two of their
   // common edges, can each close it with the same triangle, once each way: a fin of no volume, the
   // kink's node on nothing else. Both are dropped, the faces then meet along the chord, and the
-  // kink's node is left out of its edges (expect_model_edge). Faces meshed alike (`alike`: pairs of face tags)
-  // keep theirs. Call after the faces are added, before the model edges are declared. Returns the
-  // triangles dropped.
+  // kink's node is left out of its edges (expect_model_edge). Faces meshed alike (`alike`: pairs of
+  // face tags) keep theirs. Call after the faces are added, before the model edges are declared.
+  // Returns the triangles dropped.
   int64_t drop_fins(const std::set<std::pair<int, int>>& alike);
 
   // Declares a model edge: its nodes (3 doubles each, in order, as every face was given them) and how

@@ -42,9 +42,10 @@ constexpr double kSharpDegrees = 50;
 // step face 562 at h = 53: min Lo lambda 0.005). Wider needles keep kSharpDegrees: at 1/20 of the
 // diagonal pyocc_11752 and kicad_Inductor have hundreds of thread faces between h / 300 and h / 100
 // wide, and merged across their sharp edges they took 95 s and 11 s in trials for no better minimum.
-// Only a face folding back onto its neighbour is left out: facet normals err by up to BRepMesh's
-// angular deflection (0.5 rad), so a right angle can measure up to about 120 degrees.
 constexpr double kSliverRatio = 300;
+// The most such a face turns to the neighbour it merges with: only a face folding back onto it is
+// left out. Facet normals err by up to BRepMesh's angular deflection (0.5 rad), so a right angle can
+// measure up to about 120 degrees.
 constexpr double kNeedleSharpDegrees = 150;
 // A face merged for a sharp corner is wide: triangles of size h straddle the edge left out, and
 // leave the surface by up to h / 2 sin(turn / 2), h / 8 at this turn: the chord deviation that the

@@ -1,6 +1,7 @@
 // ModelMesh (apps/wefm/model_mesh.hpp), the welded whole-model mesh, as a unit: the two halves of
 // a quad are split along its better diagonal, so a quad with a corner near 180 degrees is not
-// reported as a zero-area triangle, while a triangle mesh's own sliver still is.
+// reported as a zero-area triangle, while a triangle mesh's own sliver still is; a fin closing a
+// model vertex's corner goes with the vertex, and the chord it leaves is checked.
 #include <doctest/doctest.h>
 
 #include <vector>
@@ -34,4 +35,41 @@ TEST_CASE("the same two triangles not from one quad are left as they are, and th
   mesh.add_face(1, kCorners, kShorterDiagonal);
   CHECK(mesh.conformity().zero_area_triangles == 1);
   CHECK(mesh.quads().quads == 0);
+}
+
+namespace {
+
+// Two faces that close the corner at model vertex V (between model edges V-A and V-B) with the same
+// triangle, once each way: a wall V, A, X, B and a face folded round its corner (a narrow step merged
+// into its floor) V, B, A plus B, Y, A. V is on nothing else.
+const std::vector<double> kWall = {0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 1};          // V, A, B, X
+const std::vector<double> kFolded = {0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5, 1, 0.5};    // V, A, B, Y
+const std::vector<double> kVA = {0, 0, 0, 1, 0, 0}, kVB = {0, 0, 0, 0, 0, 1};
+const std::vector<double> kAXB = {1, 0, 0, 1, 0, 1, 0, 0, 1}, kBYA = {0, 0, 1, 0.5, 1, 0.5, 1, 0, 0};
+
+}  // namespace
+
+TEST_CASE("a fin closing a model vertex's corner is dropped with the vertex, the chord left checked like any edge") {
+  ModelMesh mesh(1e-9);
+  mesh.add_face(1, kWall, {0, 1, 2, 1, 3, 2});
+  mesh.add_face(2, kFolded, {0, 2, 1, 2, 3, 1});
+  CHECK(mesh.drop_fins({}) == 2);
+  for (const auto* edge : {&kVA, &kVB}) mesh.expect_model_edge(*edge, 2);
+  for (const auto* edge : {&kAXB, &kBYA}) mesh.expect_model_edge(*edge, 1);  // free edges of the two
+  const auto c = mesh.conformity();
+  CHECK(c.unexplained_open_edges == 0);
+  CHECK(c.unexplained_non_manifold_edges == 0);
+  CHECK(c.open_edges == 4);
+  CHECK(c.non_manifold_edges == 0);
+}
+
+TEST_CASE("with the fin dropped, a chord that only one triangle uses is still a gap") {
+  ModelMesh mesh(1e-9);
+  mesh.add_face(1, kWall, {0, 1, 2, 1, 3, 2});
+  mesh.add_face(2, std::vector<double>(kFolded.begin(), kFolded.begin() + 9), {0, 2, 1});
+  // The folded face is only the fin's triangle: V and its two model edges go, and A-B is left open.
+  CHECK(mesh.drop_fins({}) == 2);
+  for (const auto* edge : {&kVA, &kVB}) mesh.expect_model_edge(*edge, 2);
+  mesh.expect_model_edge(kAXB, 1);
+  CHECK(mesh.conformity().unexplained_open_edges == 1);
 }
