@@ -674,8 +674,9 @@ std::map<long long, std::vector<double>> graded_targets(const CadModel& model, d
     SizeProfile p;
     p.s = sample_arcs(chain_arcs(*c.face, *c.edge), h / 4);
     if (const auto it = pinches.find(id); it != pinches.end()) {
+      const double length = p.s.back();  // not p.s.back() in the loop: that is the last sample added
       for (double s : it->second)
-        if (s > 0 && s < p.s.back()) p.s.push_back(s);
+        if (s > 0 && s < length) p.s.push_back(s);
       std::sort(p.s.begin(), p.s.end());
       p.s.erase(std::unique(p.s.begin(), p.s.end()), p.s.end());
     }

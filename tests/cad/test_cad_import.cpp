@@ -494,6 +494,64 @@ TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also be
   }
 }
 
+// The strip of pinched_strip twisted back a second time: the sides pass 0.05 apart again inside the
+// chain segments from x = 74 (A) and 72 (B) to 87.
+CadFace twice_pinched_strip() {
+  CadFace f = pinched_strip();
+  const std::vector<double> xs = {0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 72, 74, 87, 90, 100};
+  auto ramp = [](double x, double x0, double x1) { return std::clamp((x - x0) / (x1 - x0), 0.0, 1.0); };
+  constexpr int kRows = 4;
+  const auto columns = static_cast<int32_t>(xs.size());
+  auto id = [&](int32_t i, int32_t r) { return i * (kRows + 1) + r; };
+  f.xyz.clear();
+  f.triangles.clear();
+  for (double x : xs) {
+    const double za = -1 + 2 * ramp(x, 44, 57) - 2 * ramp(x, 74, 87), zb = 1 - 2 * ramp(x, 42, 57) + 2 * ramp(x, 72, 87);
+    for (int r = 0; r <= kRows; ++r) {
+      const double v = static_cast<double>(r) / kRows;
+      f.xyz.insert(f.xyz.end(), {x, 0.05 * v, za + v * (zb - za)});
+    }
+  }
+  for (int32_t i = 0; i + 1 < columns; ++i)
+    for (int32_t r = 0; r < kRows; ++r)
+      f.triangles.insert(f.triangles.end(), {id(i, r), id(i + 1, r), id(i + 1, r + 1), id(i, r), id(i + 1, r + 1), id(i, r + 1)});
+  f.edges[0].vertices.clear(), f.edges[1].vertices.clear(), f.edges[2].vertices.clear(), f.edges[3].vertices.clear();
+  for (int32_t i = 0; i < columns; ++i) f.edges[0].vertices.push_back(id(i, 0));
+  for (int32_t r = 0; r <= kRows; ++r) f.edges[1].vertices.push_back(id(columns - 1, r));
+  for (int32_t i = columns; i-- > 0;) f.edges[2].vertices.push_back(id(i, kRows));
+  for (int32_t r = kRows + 1; r-- > 0;) f.edges[3].vertices.push_back(id(0, r));
+  return f;
+}
+
+TEST_CASE("edge segments shrink at every pinch along an edge, not only the first") {
+  wefm_cad::CadModel m;
+  m.path = "hand-made strip twisted twice";
+  m.format = "brep";
+  m.bbox_diagonal = std::sqrt(100.0 * 100.0 + 2.0 * 2.0 + 0.05 * 0.05);
+  m.linear_deflection = 1e-3 * m.bbox_diagonal;
+  m.faces.push_back(twice_pinched_strip());
+  m.edge_count = 4;
+  const double h = 10;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
+  // The shortest segment of a long side with its midpoint between x0 and x1.
+  auto shortest = [&](long long edge, double x0, double x1) {
+    const std::vector<double>& p = nodes.at(edge).xyz;
+    double s = 1e300;
+    for (size_t k = 0; k + 5 < p.size(); k += 3) {
+      const double x = 0.5 * (p[k] + p[k + 3]);
+      if (x > x0 && x < x1) s = std::min(s, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    }
+    return s;
+  };
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    // Both pinches. A pinch sample was once kept only while below the last one added to the edge's
+    // samples: one side lost its second pinch, its segments there 5.0 long across 0.05.
+    CHECK(shortest(side, 40, 60) < 0.2);
+    CHECK(shortest(side, 70, 90) < 0.2);
+  }
+}
+
 TEST_CASE("the two edges of a cusp get the same first segment, then a fan growing with the width across") {
   // A triangle with a 5 degree corner at the origin, sides 100 along x and to (100, 100 tan 5), at
   // h = 10. The corner is a cusp: its first segment (no triangle there can reach Lo lambda 0.3) is
