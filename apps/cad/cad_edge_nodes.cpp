@@ -219,6 +219,8 @@ void lower_by_turning(const CadFace& f, const CadEdge& e, double floor, SizeProf
 // face each other across the face: a strip narrower than the edge's segments, or a corner sharper
 // than about 20 degrees. Points just round a blunter corner do not.
 constexpr double kAcrossRatio = 0.35;
+// Two chain segments within about 8 degrees of parallel face each other along their overlap.
+constexpr double kParallelCos = 0.99;
 
 // Which side of each boundary segment (chain vertex i to i + 1 of an edge) the face lies on, from
 // the facet corner across it. Unknown on a seam, whose segments have facets on both sides.
@@ -371,6 +373,30 @@ std::pair<double, double> closest_on_segments(const double* p0, const double* p1
   return {s, t};
 }
 
+// Where point q projects inside segment p0-p1 (arc lengths s0, s1), nearer than `reach` and farther
+// than `coincide`: that arc length, a sample of the segment's edge.
+void add_facing_end(const double* q, const double* p0, const double* p1, double s0, double s1, double reach, double coincide,
+                    std::vector<double>& samples) {
+  double d[3], w[3];
+  for (int c = 0; c < 3; ++c) d[c] = p1[c] - p0[c], w[c] = q[c] - p0[c];
+  const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  if (!(dd > 0)) return;
+  const double t = (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / dd;
+  if (!(t > 0 && t < 1)) return;
+  double x[3];
+  for (int c = 0; c < 3; ++c) x[c] = p0[c] + t * d[c];
+  const double dist = distance(x, q);
+  if (dist < reach && dist > coincide) samples.push_back(s0 + t * (s1 - s0));
+}
+
+// Whether segments p0-p1 and q0-q1 run within kParallelCos of parallel (either way).
+bool parallel(const double* p0, const double* p1, const double* q0, const double* q1) {
+  double u[3], v[3];
+  for (int c = 0; c < 3; ++c) u[c] = p1[c] - p0[c], v[c] = q1[c] - q0[c];
+  const double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2], uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  return uu > 0 && vv > 0 && std::fabs(uv) >= kParallelCos * std::sqrt(uu * vv);
+}
+
 // Where two edges of a face pass closest to each other inside chain segments of both (two skew
 // segments, as across a pinch of a twisted blend), no chain vertex lies at the narrowest place and
 // the samples on either side may be several times as wide: the arc lengths of those closest points,
@@ -392,6 +418,14 @@ void add_pinch_samples(const CadFace& f, double reach, double coincide, std::map
       for (size_t i = 0; i + 1 < ea.vertices.size(); ++i)
         for (size_t j = 0; j + 1 < eb.vertices.size(); ++j) {
           const double *p0 = at(ea.vertices[i]), *p1 = at(ea.vertices[i + 1]), *q0 = at(eb.vertices[j]), *q1 = at(eb.vertices[j + 1]);
+          if (parallel(p0, p1, q0, q1)) {
+            // No single closest pair: where one's end faces the other (a tongue or a slot between
+            // parallel edges) is where the narrow stretch begins and ends.
+            add_facing_end(q0, p0, p1, arcs[a][i], arcs[a][i + 1], reach, coincide, extra[ea.id]);
+            add_facing_end(q1, p0, p1, arcs[a][i], arcs[a][i + 1], reach, coincide, extra[ea.id]);
+            add_facing_end(p0, q0, q1, arcs[b][j], arcs[b][j + 1], reach, coincide, extra[eb.id]);
+            add_facing_end(p1, q0, q1, arcs[b][j], arcs[b][j + 1], reach, coincide, extra[eb.id]);
+          }
           const auto [s, t] = closest_on_segments(p0, p1, q0, q1);
           if (!(s > 0 && s < 1 && t > 0 && t < 1)) continue;
           double x[3], y[3];

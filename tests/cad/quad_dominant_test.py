@@ -21,8 +21,10 @@ merged with their neighbours), from the MSH itself:
   with `--mapped named` only the tube is mapped (its strip is not four-sided's doing); with
   `--mapped-grid-limit 0.5` no grid is kept that has more than half the elements of the face's free mesh;
 - a bad value refused with exit 2 and a reason, no file written;
-- with CAD_MORE_DIR, gmsh_problemSphere.brep all-quad, whose mesh keeps folded quads (issue 32): the
-  report's `quads.folded` and `folded_faces` match the MSH, and a warning says so on stderr.
+- with CAD_MORE_DIR, gmsh_Solid_56.step all-quad, whose mesh keeps folded quads (issue 32; faces 28
+  and 44): the report's `quads.folded` and `folded_faces` match the MSH, and a warning says so on
+  stderr. (gmsh_problemSphere.brep served until its edges were sampled where parallel chain segments
+  face each other: it has none left.)
 
 usage: quad_dominant_test.py WEFM PIN_PLATE.brep BOX.brep [CAD_MORE_DIR]
 """
@@ -104,10 +106,10 @@ def check_folded(wefm, model, tmp):
 
 def main():
     wefm, pin_plate, box = sys.argv[1:4]
-    sphere = os.path.join(sys.argv[4], "gmsh_problemSphere.brep") if len(sys.argv) > 4 else ""
-    if sphere and os.path.exists(sphere):
+    folding = os.path.join(sys.argv[4], "gmsh_Solid_56.step") if len(sys.argv) > 4 else ""
+    if folding and os.path.exists(folding):
         with tempfile.TemporaryDirectory() as tmp:
-            check_folded(wefm, sphere, tmp)
+            check_folded(wefm, folding, tmp)
     with tempfile.TemporaryDirectory() as tmp:
         r, faces, points = check(wefm, pin_plate, tmp, "pin_plate")
         tube = next(f for f in r["faces"] if f["surface_type"] == "cylinder")

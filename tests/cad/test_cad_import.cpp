@@ -419,6 +419,37 @@ TEST_CASE("edge segments shrink where a face is narrow, not across a gap outside
   CHECK(*std::max_element(far_side.begin(), far_side.end()) > 0.85 * h);
 }
 
+TEST_CASE("edge segments shrink along a tongue between two parallel edges, where no sample falls") {
+  // A plate 10 thick whose outline has a tongue 0.2 wide and 6 long (0 < x < 6, 0 < y < 0.2) on the
+  // left of its 24 x 30 body: the bottom edge (y = 0, 30 long, one chain segment) faces the tongue's
+  // top (y = 0.2, 6 long, parallel) across 0.2. At h = 30 the bottom's size samples lie h / 4 apart;
+  // none but the tip's vertex is on the tongue, and at the tip the top is reached round the end
+  // edge, not across. Where the top's end at the root faces the bottom (x = 6) is a sample too, of
+  // size 2.5 x 0.2, and the segments grade from it and from the tip: the longest over the tongue
+  // 1.10 (9 segments) against 1.34 (7) without that sample.
+  BRepBuilderAPI_MakePolygon outline;
+  for (auto [x, y] : {std::pair<double, double>{0, 0}, {30, 0}, {30, 30}, {6, 30}, {6, 0.2}, {0, 0.2}}) outline.Add(gp_Pnt(x, y, 0));
+  outline.Close();
+  const TopoDS_Shape plate = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(outline.Wire()).Face(), gp_Vec(0, 0, 10)).Shape();
+  const wefm_cad::CadModel m = load_shape(plate, "wefm_tongue_plate.brep");
+  const double h = 30;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(m.faces.size(), h), 0.3);
+  // The bottom edge on the plate's top face (z = 10): its segments over the tongue (x < 6).
+  std::vector<double> over_tongue;
+  for (const auto& [id, e] : nodes) {
+    const size_t n = e.xyz.size() / 3;
+    auto on_bottom = [&](size_t k) { return std::fabs(e.xyz[3 * k + 1]) < 1e-9 && std::fabs(e.xyz[3 * k + 2] - 10) < 1e-9; };
+    if (n < 2 || !on_bottom(0) || !on_bottom(n - 1)) continue;
+    for (size_t k = 0; k + 1 < n; ++k)
+      if (std::max(e.xyz[3 * k], e.xyz[3 * k + 3]) <= 6 + 1e-9) over_tongue.push_back(std::fabs(e.xyz[3 * k + 3] - e.xyz[3 * k]));
+  }
+  REQUIRE(over_tongue.size() > 3);
+  const double longest = *std::max_element(over_tongue.begin(), over_tongue.end());
+  CAPTURE(longest);
+  CAPTURE(over_tongue.size());
+  CHECK(longest < 1.2);
+}
+
 // A twisted strip 100 long and 2 wide (z = -1 to 1 between its long sides A: y = 0 and B: y = 0.05)
 // whose sides swap heights in the middle: A rises from z = -1 to 1 on one chain segment (x from 44
 // to 57), B falls from 1 to -1 on another (x from 42 to 57). There the sides pass 0.05 apart, at a
