@@ -271,6 +271,21 @@ std::vector<std::array<double, 6>> edge_boxes(const CadFace& f, double reach) {
   return box;
 }
 
+// Where point q falls on segment p0-p1: the parameter of its projection on the segment's line (0 on
+// a degenerate segment) and its distance to the nearest point of the segment.
+struct Foot {
+  double t, distance;
+};
+
+Foot foot_on_segment(const double* q, const double* p0, const double* p1) {
+  const double d[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]};
+  const double w[3] = {q[0] - p0[0], q[1] - p0[1], q[2] - p0[2]};
+  const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+  const double t = dd > 0 ? (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / dd : 0.0, on = std::clamp(t, 0.0, 1.0);
+  const double x[3] = {w[0] - on * d[0], w[1] - on * d[1], w[2] - on * d[2]};
+  return {t, std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2])};
+}
+
 // The width of the face at each sample of its edges, reported with the sample's point to
 // `width_at`: the distance from a sample to the nearest point of another edge of the face that lies
 // across the face from it (on another loop, or far round the same loop compared with the distance,
@@ -335,17 +350,13 @@ void lower_by_width(const CadFace& f, double reach, double coincide,
         for (size_t i = 0; i + 1 < eb.vertices.size(); ++i) {
           const double* q0 = &f.xyz[3 * static_cast<size_t>(eb.vertices[i])];
           const double* q1 = &f.xyz[3 * static_cast<size_t>(eb.vertices[i + 1])];
-          const double d[3] = {q1[0] - q0[0], q1[1] - q0[1], q1[2] - q0[2]};
-          const double w[3] = {p[0] - q0[0], p[1] - q0[1], p[2] - q0[2]};
-          const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-          const double t = dd > 0 ? std::clamp((d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / dd, 0.0, 1.0) : 0.0;
-          const double x[3] = {w[0] - t * d[0], w[1] - t * d[1], w[2] - t * d[2]};
-          const double dist = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+          const Foot foot = foot_on_segment(p.data(), q0, q1);
+          const double t = std::clamp(foot.t, 0.0, 1.0), dist = foot.distance;
           if (dist >= width || dist <= coincide) continue;
           const double sq = arcs[b][i] + t * (arcs[b][i + 1] - arcs[b][i]);
           // Across the face, not across a hole or round the outside: each point on the face's
           // side of the other's segment.
-          const double qx[3] = {q0[0] + t * d[0], q0[1] + t * d[1], q0[2] + t * d[2]};
+          const double qx[3] = {q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1]), q0[2] + t * (q1[2] - q0[2])};
           if (!side.inward(a, ia, qx) || !side.inward(b, i, p.data())) continue;
           if (dist < kAcrossRatio * round_loop(a, samples[k], b, sq)) width = dist;
         }
@@ -377,23 +388,16 @@ std::pair<double, double> closest_on_segments(const double* p0, const double* p1
 // than `coincide`: that arc length, a sample of the segment's edge.
 void add_facing_end(const double* q, const double* p0, const double* p1, double s0, double s1, double reach, double coincide,
                     std::vector<double>& samples) {
-  double d[3], w[3];
-  for (int c = 0; c < 3; ++c) d[c] = p1[c] - p0[c], w[c] = q[c] - p0[c];
-  const double dd = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-  if (!(dd > 0)) return;
-  const double t = (d[0] * w[0] + d[1] * w[1] + d[2] * w[2]) / dd;
-  if (!(t > 0 && t < 1)) return;
-  double x[3];
-  for (int c = 0; c < 3; ++c) x[c] = p0[c] + t * d[c];
-  const double dist = distance(x, q);
-  if (dist < reach && dist > coincide) samples.push_back(s0 + t * (s1 - s0));
+  const Foot foot = foot_on_segment(q, p0, p1);
+  if (foot.t > 0 && foot.t < 1 && foot.distance < reach && foot.distance > coincide) samples.push_back(s0 + foot.t * (s1 - s0));
 }
 
 // Whether segments p0-p1 and q0-q1 run within kParallelCos of parallel (either way).
 bool parallel(const double* p0, const double* p1, const double* q0, const double* q1) {
   double u[3], v[3];
   for (int c = 0; c < 3; ++c) u[c] = p1[c] - p0[c], v[c] = q1[c] - q0[c];
-  const double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2], uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  const double uv = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   return uu > 0 && vv > 0 && std::fabs(uv) >= kParallelCos * std::sqrt(uu * vv);
 }
 
