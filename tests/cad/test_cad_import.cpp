@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -450,27 +451,20 @@ TEST_CASE("edge segments shrink along a tongue between two parallel edges, where
   CHECK(longest < 1.2);
 }
 
-// A twisted strip 100 long and 2 wide (z = -1 to 1 between its long sides A: y = 0 and B: y = 0.05)
-// whose sides swap heights in the middle: A rises from z = -1 to 1 on one chain segment (x from 44
-// to 57), B falls from 1 to -1 on another (x from 42 to 57). There the sides pass 0.05 apart, at a
-// place inside both chain segments (two skew segments), where no chain vertex or size sample lies:
-// the nearest samples see the strip about three times as wide.
-CadFace pinched_strip() {
-  const std::vector<double> xs = {0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 80, 90, 100};
-  auto ramp = [](double x, double x0, double x1) { return std::clamp((x - x0) / (x1 - x0), 0.0, 1.0); };
+// A strip 100 long and 2 wide (z = -1 to 1 between its long sides A: y = 0 and B: y = 0.05), its
+// chain vertices at `xs`, side A at height za(x) and side B at zb(x), 4 rows of facets between.
+CadFace strip(const std::vector<double>& xs, const std::function<double(double)>& za, const std::function<double(double)>& zb) {
   constexpr int kRows = 4;
   CadFace f;
   f.index = 1;
   f.surface_type = "bspline";
   const auto columns = static_cast<int32_t>(xs.size());
   auto id = [&](int32_t i, int32_t r) { return i * (kRows + 1) + r; };
-  for (double x : xs) {
-    const double za = -1 + 2 * ramp(x, 44, 57), zb = 1 - 2 * ramp(x, 42, 57);
+  for (double x : xs)
     for (int r = 0; r <= kRows; ++r) {
       const double v = static_cast<double>(r) / kRows;
-      f.xyz.insert(f.xyz.end(), {x, 0.05 * v, za + v * (zb - za)});
+      f.xyz.insert(f.xyz.end(), {x, 0.05 * v, za(x) + v * (zb(x) - za(x))});
     }
-  }
   for (int32_t i = 0; i + 1 < columns; ++i)
     for (int32_t r = 0; r < kRows; ++r)
       f.triangles.insert(f.triangles.end(), {id(i, r), id(i + 1, r), id(i + 1, r + 1), id(i, r), id(i + 1, r + 1), id(i, r + 1)});
@@ -485,6 +479,17 @@ CadFace pinched_strip() {
   f.loops = {{{0, false}, {1, false}, {2, false}, {3, false}}};
   f.outer_loop = 0;
   return f;
+}
+
+double ramp(double x, double x0, double x1) { return std::clamp((x - x0) / (x1 - x0), 0.0, 1.0); }
+
+// The strip twisted: its sides swap heights in the middle, A rising from z = -1 to 1 on one chain
+// segment (x from 44 to 57), B falling from 1 to -1 on another (x from 42 to 57). There the sides
+// pass 0.05 apart, at a place inside both chain segments (two skew segments), where no chain vertex
+// or size sample lies: the nearest samples see the strip about three times as wide.
+CadFace pinched_strip() {
+  return strip({0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + 2 * ramp(x, 44, 57); },
+               [](double x) { return 1 - 2 * ramp(x, 42, 57); });
 }
 
 TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also between chain vertices") {
@@ -528,30 +533,9 @@ TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also be
 // The strip of pinched_strip twisted back a second time: the sides pass 0.05 apart again inside the
 // chain segments from x = 74 (A) and 72 (B) to 87.
 CadFace twice_pinched_strip() {
-  CadFace f = pinched_strip();
-  const std::vector<double> xs = {0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 72, 74, 87, 90, 100};
-  auto ramp = [](double x, double x0, double x1) { return std::clamp((x - x0) / (x1 - x0), 0.0, 1.0); };
-  constexpr int kRows = 4;
-  const auto columns = static_cast<int32_t>(xs.size());
-  auto id = [&](int32_t i, int32_t r) { return i * (kRows + 1) + r; };
-  f.xyz.clear();
-  f.triangles.clear();
-  for (double x : xs) {
-    const double za = -1 + 2 * ramp(x, 44, 57) - 2 * ramp(x, 74, 87), zb = 1 - 2 * ramp(x, 42, 57) + 2 * ramp(x, 72, 87);
-    for (int r = 0; r <= kRows; ++r) {
-      const double v = static_cast<double>(r) / kRows;
-      f.xyz.insert(f.xyz.end(), {x, 0.05 * v, za + v * (zb - za)});
-    }
-  }
-  for (int32_t i = 0; i + 1 < columns; ++i)
-    for (int32_t r = 0; r < kRows; ++r)
-      f.triangles.insert(f.triangles.end(), {id(i, r), id(i + 1, r), id(i + 1, r + 1), id(i, r), id(i + 1, r + 1), id(i, r + 1)});
-  f.edges[0].vertices.clear(), f.edges[1].vertices.clear(), f.edges[2].vertices.clear(), f.edges[3].vertices.clear();
-  for (int32_t i = 0; i < columns; ++i) f.edges[0].vertices.push_back(id(i, 0));
-  for (int32_t r = 0; r <= kRows; ++r) f.edges[1].vertices.push_back(id(columns - 1, r));
-  for (int32_t i = columns; i-- > 0;) f.edges[2].vertices.push_back(id(i, kRows));
-  for (int32_t r = kRows + 1; r-- > 0;) f.edges[3].vertices.push_back(id(0, r));
-  return f;
+  return strip({0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 72, 74, 87, 90, 100},
+               [](double x) { return -1 + 2 * ramp(x, 44, 57) - 2 * ramp(x, 74, 87); },
+               [](double x) { return 1 - 2 * ramp(x, 42, 57) + 2 * ramp(x, 72, 87); });
 }
 
 TEST_CASE("edge segments shrink at every pinch along an edge, not only the first") {
