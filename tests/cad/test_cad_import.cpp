@@ -481,6 +481,18 @@ CadFace strip(const std::vector<double>& xs, const std::function<double(double)>
   return f;
 }
 
+// A model of the one strip face.
+wefm_cad::CadModel strip_model(CadFace f, const char* path) {
+  wefm_cad::CadModel m;
+  m.path = path;
+  m.format = "brep";
+  m.bbox_diagonal = std::sqrt(100.0 * 100.0 + 2.0 * 2.0 + 0.05 * 0.05);
+  m.linear_deflection = 1e-3 * m.bbox_diagonal;
+  m.faces.push_back(std::move(f));
+  m.edge_count = 4;
+  return m;
+}
+
 double ramp(double x, double x0, double x1) { return std::clamp((x - x0) / (x1 - x0), 0.0, 1.0); }
 
 // The strip twisted: its sides swap heights in the middle, A rising from z = -1 to 1 on one chain
@@ -493,13 +505,7 @@ CadFace pinched_strip() {
 }
 
 TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also between chain vertices") {
-  wefm_cad::CadModel m;
-  m.path = "hand-made twisted strip";
-  m.format = "brep";
-  m.bbox_diagonal = std::sqrt(100.0 * 100.0 + 2.0 * 2.0 + 0.05 * 0.05);
-  m.linear_deflection = 1e-3 * m.bbox_diagonal;
-  m.faces.push_back(pinched_strip());
-  m.edge_count = 4;
+  const wefm_cad::CadModel m = strip_model(pinched_strip(), "hand-made twisted strip");
   const double h = 10;
   const std::vector<double> sizes(1, h);
   // The shortest segment of each long side.
@@ -539,13 +545,7 @@ CadFace twice_pinched_strip() {
 }
 
 TEST_CASE("edge segments shrink at every pinch along an edge, not only the first") {
-  wefm_cad::CadModel m;
-  m.path = "hand-made strip twisted twice";
-  m.format = "brep";
-  m.bbox_diagonal = std::sqrt(100.0 * 100.0 + 2.0 * 2.0 + 0.05 * 0.05);
-  m.linear_deflection = 1e-3 * m.bbox_diagonal;
-  m.faces.push_back(twice_pinched_strip());
-  m.edge_count = 4;
+  const wefm_cad::CadModel m = strip_model(twice_pinched_strip(), "hand-made strip twisted twice");
   const double h = 10;
   const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
   // The shortest segment of a long side with its midpoint between x0 and x1.
