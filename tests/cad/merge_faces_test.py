@@ -43,6 +43,17 @@ def run(wefm, model, tmp, name, *extra):
     return report, msh
 
 
+def assert_closed(report, msh):
+    """No defect in the report, and every edge of the written MSH used by exactly two triangles (a closed
+    solid's mesh). Returns the MSH's triangles per face."""
+    c = report["conformity"]
+    assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0 and c["zero_area_triangles"] == 0, c
+    faces, _ = read_msh_faces(msh)
+    uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for tris in faces.values() for t in tris for i in range(3))
+    assert set(uses.values()) == {2}, f"open or non-manifold edges: {Counter(uses.values())}"
+    return faces
+
+
 def check_twice(wefm, model, tmp):
     r, msh = run(wefm, model, tmp, "twice")
     c = r["conformity"]
@@ -70,14 +81,10 @@ def check_twice(wefm, model, tmp):
 def check_step(wefm, model, tmp):
     alone, _ = run(wefm, model, tmp, "step-alone", "--no-merge-faces")
     r, msh = run(wefm, model, tmp, "step")
-    c = r["conformity"]
-    assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0 and c["zero_area_triangles"] == 0, c
     h = r["size"]
     merges = [m for m in r["merged_faces"] if m["merged_into"]]
     assert len(merges) == 1 and merges[0]["width"] < h / 100 and merges[0]["dihedral_degrees"] > 80, r["merged_faces"]
-    faces, _ = read_msh_faces(msh)
-    uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for tris in faces.values() for t in tris for i in range(3))
-    assert set(uses.values()) == {2}, f"open or non-manifold edges: {Counter(uses.values())}"
+    assert_closed(r, msh)
     assert r["lambda_min"] >= 0.3, r["lambda_min"]
     assert 4 * r["triangles"] < alone["triangles"], (r["triangles"], alone["triangles"])
     print(f"step: merged f{merges[0]['face']} into f{merges[0]['merged_into']} across {merges[0]['dihedral_degrees']:.0f} deg; "
@@ -94,11 +101,7 @@ def main():
 
         r, msh = run(wefm, model, tmp, "merged")
         assert r["lambda_min"] >= 0.3, f"min lambda {r['lambda_min']} with merging"
-        c = r["conformity"]
-        assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0 and c["zero_area_triangles"] == 0, c
-        faces, _ = read_msh_faces(msh)
-        uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for tris in faces.values() for t in tris for i in range(3))
-        assert set(uses.values()) == {2}, f"open or non-manifold edges: {Counter(uses.values())}"
+        faces = assert_closed(r, msh)
         assert set(faces) <= all_faces, f"triangles in groups that are no face: {set(faces) - all_faces}"
 
         merges = [m for m in r["merged_faces"] if m["merged_into"]]
