@@ -218,3 +218,58 @@ TEST_CASE("quad smoothing unfolds: interior nodes of an all-quad mesh thrown abo
   CHECK(2 * before > static_cast<int>(dm.elements.size() / 4));
   CHECK(after == 0);
 }
+
+TEST_CASE("all-quad split: where the domain stretches unevenly, new nodes lift to the 3D midpoints and centres, and the quads stay square") {
+  // A flat unit square whose domain is u^3 by v: the UV middle of an element lifts far to the right
+  // of its 3D middle, as across a pinch of a face or its sliver facets. Two 3D squares side by side
+  // (0.4 wide) share an edge inside the face, whose middle moves along it; their centres move freely.
+  const TriMesh mesh = test::unit_square(32);
+  const Topology topo = build_topology(mesh, TopologySpec{});
+  VectorXc uv(static_cast<Eigen::Index>(topo.use_vertex.size()));
+  for (size_t u = 0; u < topo.use_vertex.size(); ++u) {
+    const Vec3& x = mesh.vertices[static_cast<size_t>(topo.use_vertex[u])];
+    uv[static_cast<Eigen::Index>(u)] = Complex(x.x() * x.x() * x.x(), x.y());
+  }
+  const meshing::SurfaceMap map(mesh, topo, uv);
+  meshing::DomainMesh start;
+  const double xs[3] = {0.1, 0.5, 0.9}, ys[2] = {0.1, 0.5};
+  for (double y : ys)
+    for (double x : xs) {
+      start.uv.emplace_back(x * x * x, y);
+      start.xyz.emplace_back(x, y, 0.0);
+      start.normal.emplace_back(0.0, 0.0, 1.0);
+    }
+  start.nodes_per_element = 4;
+  start.elements = {0, 1, 4, 3, 1, 2, 5, 4};
+  start.boundary_nodes = 6;  // every corner is on the boundary of the two squares
+  auto centre_offset_and_worst = [&](meshing::SplitNodes place, double& worst) {
+    meshing::DomainMesh m = start;
+    meshing::split_into_quads(m, map, place);
+    REQUIRE(m.elements.size() == 8 * 4);
+    worst = 2;
+    for (size_t e = 0; e < m.elements.size() / 4; ++e) {
+      auto X = [&](size_t k) { return m.xyz[static_cast<size_t>(m.elements[4 * e + k])]; };
+      CHECK(signed_area_uv(m, e) > 0);
+      worst = std::min(worst, meshing::scaled_jacobian(X(0), X(1), X(2), X(3)));
+    }
+    // The new nodes inside: the shared edge's middle (3D (0.5, 0.3)) and the two centres (3D
+    // (0.3, 0.3) and (0.7, 0.3)); the farthest of them from its place.
+    double off = 0;
+    for (size_t i = static_cast<size_t>(m.boundary_nodes); i < m.xyz.size(); ++i) {
+      double nearest = 1e300;
+      for (double x : {0.3, 0.5, 0.7}) nearest = std::min(nearest, (m.xyz[i] - Vec3(x, 0.3, 0)).norm());
+      off = std::max(off, nearest);
+    }
+    CHECK(m.xyz.size() - static_cast<size_t>(m.boundary_nodes) == 3);
+    return off;
+  };
+  double worst_uv = 0, worst_3d = 0;
+  const double off_uv = centre_offset_and_worst(meshing::SplitNodes::uv_middles, worst_uv);
+  const double off_3d = centre_offset_and_worst(meshing::SplitNodes::nearest_3d, worst_3d);
+  MESSAGE("new nodes off their 3D places: ", off_uv, " at the UV middles, ", off_3d, " nearest in 3D; worst scaled Jacobian ", worst_uv,
+          " and ", worst_3d);
+  CHECK(off_uv > 0.05);
+  CHECK(off_3d < 1e-6);
+  CHECK(worst_uv < 0.95);
+  CHECK(worst_3d > 0.999);
+}

@@ -41,13 +41,14 @@ void mesh_free(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, co
   out.report.time_map = now() - t0;
   if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 3) > o.max_elements)
     fail(Errc::invalid_argument, "the free mesh needs more than max_elements = " + std::to_string(o.max_elements) + " triangles at size " + std::to_string(o.size));
-  if (o.elements != Elements::Triangles) recombine(out, kMinQuadQuality);
-  if (o.elements == Elements::Quads) {
-    split_into_quads(out, map);
-    if (o.max_elements > 0 && static_cast<std::int64_t>(out.elements.size() / 4) > o.max_elements)
-      fail(Errc::invalid_argument, "the all-quad mesh needs more than max_elements = " + std::to_string(o.max_elements) + " quads at size " + std::to_string(o.size));
-  }
-  if (o.elements != Elements::Triangles) smooth_quads(out, map, o.smoothing_iterations);
+  if (o.elements == Elements::Triangles) return;
+  recombine(out, kMinQuadQuality);
+  // All-quad meshes too: the quads split from smoothed quads start nearer their final shapes.
+  smooth_quads(out, map, o.smoothing_iterations);
+  if (o.elements != Elements::Quads) return;
+  if (o.max_elements > 0 && static_cast<std::int64_t>(split_count(out)) > o.max_elements)
+    fail(Errc::invalid_argument, "the all-quad mesh needs more than max_elements = " + std::to_string(o.max_elements) + " quads at size " + std::to_string(o.size));
+  split_and_smooth(out, map, o.smoothing_iterations, kMinQuadQuality);
 }
 
 // A transfinite grid whose worst quad is below this is not chosen by MeshType::Automatic: its free

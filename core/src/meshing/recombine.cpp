@@ -174,6 +174,51 @@ constexpr double kSearchBelow = 0.3;
 // Rounds of compass search over the nodes of folded elements and their neighbours, after the passes.
 constexpr int kUnfoldRounds = 8;
 
+// Gauss-Newton steps towards the UV point whose lift is nearest `target`: a split's new node at
+// its UV midpoint or centre lifts far from the 3D midpoint or centre where the flattening stretches
+// unevenly across the element (a face's pinch, sliver facets of the tessellation), and the quads
+// split there fold. On the segment a + t (b - a) for an edge's middle (t kept in [1/4, 3/4]);
+// anywhere for a centre, whose quads the caller checks. Returns `p` unchanged when no step brings
+// the lift nearer.
+constexpr int kNearestSteps = 4;
+
+double distance_of_lift(const SurfaceMap& map, const P2& p, const Vec3& target) {
+  Vec3 x;
+  return map.lift(p, x) ? (x - target).norm() : HUGE_VAL;
+}
+
+P2 nearest_on_segment(const SurfaceMap& map, const P2& a, const P2& b, const Vec3& target) {
+  const P2 start = 0.5 * (a + b);
+  double t = 0.5;
+  for (int k = 0; k < kNearestSteps; ++k) {
+    Eigen::Matrix<double, 3, 2> J;
+    Vec3 x;
+    if (!map.lift(a + t * (b - a), x) || !map.jacobian(a + t * (b - a), J)) break;
+    const Vec3 g = J * (b - a);
+    const double gg = g.squaredNorm();
+    if (!(gg > 0)) break;
+    t = std::clamp(t + g.dot(target - x) / gg, 0.25, 0.75);
+  }
+  const P2 p = a + t * (b - a);
+  return distance_of_lift(map, p, target) < distance_of_lift(map, start, target) ? p : start;
+}
+
+P2 nearest_point(const SurfaceMap& map, const P2& start, const Vec3& target, double reach) {
+  P2 p = start;
+  for (int k = 0; k < kNearestSteps; ++k) {
+    Eigen::Matrix<double, 3, 2> J;
+    Vec3 x;
+    if (!map.lift(p, x) || !map.jacobian(p, J)) break;
+    const Eigen::Matrix2d JtJ = J.transpose() * J;
+    if (!(std::fabs(JtJ.determinant()) > 0)) break;
+    P2 d = JtJ.ldlt().solve(J.transpose() * (target - x));
+    if (!d.allFinite()) break;
+    if (d.norm() > reach) d *= reach / d.norm();
+    p += d;
+  }
+  return distance_of_lift(map, p, target) < distance_of_lift(map, start, target) ? p : start;
+}
+
 }  // namespace
 
 void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
@@ -282,7 +327,7 @@ void recombine(DomainMesh& m, double min_quality) {
   m.nodes_per_element = 4;
 }
 
-void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
+void split_into_quads(DomainMesh& m, const SurfaceMap& map, SplitNodes place) {
   if (m.nodes_per_element != 4) return;
   const size_t ne = m.elements.size() / 4;
   const size_t n0 = m.uv.size();
@@ -311,8 +356,10 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
     const auto [it, fresh] = mid.emplace(edge_key(a, b), 0);
     if (!fresh) return it->second;
     const bool fixed = uses[edge_key(a, b)] == 1 || hard.has(a, b);
+    const P2 &ua = m.uv[static_cast<size_t>(a)], &ub = m.uv[static_cast<size_t>(b)];
     const Vec3 chord = 0.5 * (m.xyz[static_cast<size_t>(a)] + m.xyz[static_cast<size_t>(b)]);
-    it->second = add(0.5 * (m.uv[static_cast<size_t>(a)] + m.uv[static_cast<size_t>(b)]), fixed, fixed ? &chord : nullptr);
+    const P2 middle = 0.5 * (ua + ub);
+    it->second = add(fixed || place == SplitNodes::uv_middles ? middle : nearest_on_segment(map, ua, ub, chord), fixed, fixed ? &chord : nullptr);
     return it->second;
   };
   std::vector<Index> out;
@@ -320,12 +367,25 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   for (size_t e = 0; e < ne; ++e) {
     const int n = corners(e);
     const Index* v = &m.elements[4 * e];
-    P2 centre = P2::Zero();
-    for (int k = 0; k < n; ++k) centre += m.uv[static_cast<size_t>(v[k])];
-    centre /= n;
+    P2 centroid = P2::Zero();
+    Vec3 mean = Vec3::Zero();
+    for (int k = 0; k < n; ++k) centroid += m.uv[static_cast<size_t>(v[k])], mean += m.xyz[static_cast<size_t>(v[k])];
+    centroid /= n, mean /= n;
     Index ms[4];
     for (int k = 0; k < n; ++k) ms[k] = midpoint(v[k], v[(k + 1) % n]);
-    const Index c = add(centre, false, nullptr);
+    // The centre nearest the corners' 3D mean, as long as the element's quads stay convex in UV.
+    double reach = HUGE_VAL;
+    for (int k = 0; k < n; ++k) reach = std::min(reach, (uv[static_cast<size_t>(ms[k])] - centroid).norm());
+    const Index c = add(place == SplitNodes::uv_middles ? centroid : nearest_point(map, centroid, mean, 0.5 * reach), false, nullptr);
+    auto quads_convex = [&] {
+      for (int k = 0; k < n; ++k)
+        if (!convex_in_uv(uv, {v[k], ms[k], c, ms[(k + n - 1) % n]})) return false;
+      return true;
+    };
+    if (place == SplitNodes::nearest_3d && !quads_convex()) {
+      uv[static_cast<size_t>(c)] = centroid;
+      map.lift(centroid, xyz[static_cast<size_t>(c)], &normal[static_cast<size_t>(c)]);
+    }
     for (int k = 0; k < n; ++k) out.insert(out.end(), {v[k], ms[k], c, ms[(k + n - 1) % n]});
   }
   // Boundary nodes first, as free meshes number them.
@@ -357,6 +417,29 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map) {
   }
   m.hard_edges = std::move(halves);
   m.boundary_nodes = boundary_count;
+}
+
+size_t split_count(const DomainMesh& m) {
+  if (m.nodes_per_element != 4) return 0;
+  size_t quads = 0;
+  for (size_t e = 0; e < m.elements.size() / 4; ++e) quads += wefm_common::element_corners(&m.elements[4 * e], 4);
+  return quads;
+}
+
+void split_and_smooth(DomainMesh& m, const SurfaceMap& map, int passes, double floor) {
+  if (m.nodes_per_element != 4) return;
+  auto worst = [](const DomainMesh& d) {
+    double w = 2;
+    for (size_t e = 0; e < d.elements.size() / 4; ++e) w = std::min(w, element_quality(d, e));
+    return w;
+  };
+  DomainMesh other = m;
+  split_into_quads(m, map, SplitNodes::nearest_3d);
+  smooth_quads(m, map, passes);
+  if (!(worst(m) < floor)) return;
+  split_into_quads(other, map, SplitNodes::uv_middles);
+  smooth_quads(other, map, passes);
+  if (worst(other) > worst(m)) m = std::move(other);
 }
 
 }  // namespace wefm::meshing

@@ -21,12 +21,28 @@ void recombine(DomainMesh& m, double min_quality);
 // Jacobian of quads, Lo lambda of triangles, in 3D; quads kept convex in UV).
 void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes);
 
+// Where split_into_quads puts a new node inside the face: at the UV middle of its edge or element,
+// lifted; or at the UV point (on its edge's UV segment for an edge's middle) whose lift is nearest
+// the 3D midpoint of the edge or the 3D mean of the element's corners, as long as the element's
+// quads stay convex in UV. The UV middles lift far from those where the flattening stretches
+// unevenly across the element (a pinch of the face, sliver facets), and the quads there fold.
+enum class SplitNodes { uv_middles, nearest_3d };
+
 // Splits every element of `m` (nodes_per_element 4, triangles with -1 as fourth node) into quads:
 // a quad into four, a triangle into three, at the midpoints of its edges and its centre. Inside
-// the face a new node is the lift of its UV; on the boundary, the midpoint of the 3D chord, so two
-// faces given the same nodes on an edge still share them. Nodes 0..boundary_nodes-1 stay the
+// the face a new node is placed as `place` says; on the boundary, at the midpoint of the 3D chord,
+// so two faces given the same nodes on an edge still share them. Nodes 0..boundary_nodes-1 stay the
 // boundary's, now with its midpoints and the hard edges' (3D chord midpoints too, fixed like the
 // boundary's); each hard edge becomes its two halves.
-void split_into_quads(DomainMesh& m, const SurfaceMap& map);
+void split_into_quads(DomainMesh& m, const SurfaceMap& map, SplitNodes place);
+
+// The number of quads split_into_quads makes of `m`: a quad's four, a triangle's three.
+size_t split_count(const DomainMesh& m);
+
+// All-quad: split_into_quads with the new nodes nearest their 3D targets, then smooth_quads
+// (`passes`). Where an element is left below `floor` (a scaled Jacobian; -1 for a quad not convex
+// in UV), the split at the UV middles is smoothed too, and the one with the better worst element
+// kept: each placement leaves folds on faces where the other leaves none.
+void split_and_smooth(DomainMesh& m, const SurfaceMap& map, int passes, double floor);
 
 }  // namespace wefm::meshing
