@@ -178,8 +178,8 @@ constexpr int kUnfoldRounds = 8;
 // its UV midpoint or centre lifts far from the 3D midpoint or centre where the flattening stretches
 // unevenly across the element (a face's pinch, sliver facets of the tessellation), and the quads
 // split there fold. On the segment a + t (b - a) for an edge's middle (t kept in [1/4, 3/4]);
-// anywhere for a centre, whose quads the caller checks. Returns `p` unchanged when no step brings
-// the lift nearer.
+// anywhere for a centre, whose quads the caller checks. Each returns its start (the UV middle) when
+// no step brings the lift nearer.
 constexpr int kNearestSteps = 4;
 
 double distance_of_lift(const SurfaceMap& map, const P2& p, const Vec3& target) {
@@ -436,10 +436,11 @@ void split_and_smooth(DomainMesh& m, const SurfaceMap& map, int passes, double f
   DomainMesh other = m;
   split_into_quads(m, map, SplitNodes::nearest_3d);
   smooth_quads(m, map, passes);
-  if (!(worst(m) < floor)) return;
+  const double nearest = worst(m);
+  if (!(nearest < floor)) return;
   split_into_quads(other, map, SplitNodes::uv_middles);
   smooth_quads(other, map, passes);
-  if (worst(other) > worst(m)) m = std::move(other);
+  if (worst(other) > nearest) m = std::move(other);
 }
 
 }  // namespace wefm::meshing
