@@ -79,7 +79,9 @@ TEST_CASE("quad-dominant: a disk with holes is nearly all quads, each convex in 
   CHECK(2 * dm.report.quads + (dm.report.elements - dm.report.quads) == tri.report.elements);
   CHECK(dm.report.quad_area_fraction >= 0.95);
   CHECK(dm.report.scaled_jacobian_min >= 0.3);
-  CHECK(dm.report.scaled_jacobian_mean >= 0.7);
+  // Quads paired from near-equilateral triangles are 60-120 degree rhombi: the Laplacian passes
+  // alone left a mean of 0.878 here, the passes for the mean (raise_mean) 0.893.
+  CHECK(dm.report.scaled_jacobian_mean >= 0.885);
   double area = 0;
   for (size_t e = 0; e < dm.elements.size() / 4; ++e) {
     CHECK(signed_area_uv(dm, e) > 0);
@@ -199,7 +201,7 @@ TEST_CASE("quad smoothing unfolds: interior nodes of an all-quad mesh thrown abo
     return n;
   };
   // Each interior node moved by up to 1.5 times its shortest edge, the same pseudo-random way each
-  // run: most quads fold or turn over. Two smoothing passes left one of them folded before the
+  // run: about half the quads fold or turn over. Two smoothing passes left one of them folded before the
   // rounds that unfold what the passes leave (each node's search was held by its neighbours' floor).
   std::uint64_t state = 12345;
   auto next = [&] {
@@ -215,7 +217,7 @@ TEST_CASE("quad smoothing unfolds: interior nodes of an all-quad mesh thrown abo
   meshing::smooth_quads(dm, map, 2);
   const int after = folded();
   MESSAGE("quads folded or not convex in UV: ", before, " of ", dm.elements.size() / 4, " thrown about, ", after, " after two smoothing passes");
-  CHECK(2 * before > static_cast<int>(dm.elements.size() / 4));
+  CHECK(5 * before > 2 * static_cast<int>(dm.elements.size() / 4));
   CHECK(after == 0);
 }
 

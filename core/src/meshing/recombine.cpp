@@ -169,6 +169,42 @@ void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::v
   m.uv[i] = best_uv, m.xyz[i] = best_xyz, m.normal[i] = best_normal;
 }
 
+// Compass search on the sum of log qualities around node i (8 directions, the step halved twice from
+// `step`), keeping the worst element around it no worse: the geometric mean rewards squaring every
+// quad a little over lifting one. Skips a node beside a folded element (compass_search's work).
+void raise_mean(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step) {
+  auto score = [&](double& worst) {
+    double sum = 0;
+    worst = 2;
+    for (size_t e : around) {
+      const double q = element_quality(m, e);
+      worst = std::min(worst, q), sum += std::log(std::max(q, 1e-12));
+    }
+    return sum;
+  };
+  double worst = 0;
+  double best = score(worst);
+  if (!(worst > 0)) return;
+  P2 best_uv = m.uv[i];
+  Vec3 best_xyz = m.xyz[i], best_normal = m.normal[i];
+  for (int level = 0; level < 3; ++level, step *= 0.5)
+    for (int dir = 0; dir < 8; ++dir) {
+      m.uv[i] = best_uv + step * P2(std::cos(dir * 0.25 * kPi), std::sin(dir * 0.25 * kPi));
+      Vec3 x, nrm;
+      if (!map.lift(m.uv[i], x, &nrm)) continue;
+      m.xyz[i] = x, m.normal[i] = nrm;
+      double w = 0;
+      const double sum = score(w);
+      if (w >= worst && sum > best + 1e-12) best = sum, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
+    }
+  m.uv[i] = best_uv, m.xyz[i] = best_xyz, m.normal[i] = best_normal;
+}
+
+// Passes of raise_mean after the Laplacian ones (more gain little: docs/PERFORMANCE.md), and its
+// first step as a fraction of the mean distance to the node's neighbours.
+constexpr int kMeanPasses = 2;
+constexpr double kMeanStep = 0.1;
+
 // Nodes whose worst element stays below this after the Laplacian move get a compass search.
 constexpr double kSearchBelow = 0.3;
 // Rounds of compass search over the nodes of folded elements and their neighbours, after the passes.
@@ -280,6 +316,15 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
       if (worst_of(m, around[i]) < kSearchBelow) search(i);
     }
   }
+  // Then for the elements' shapes on the whole: the Laplacian target is the neighbours' mean, which
+  // leaves a quad split from two near-equilateral triangles a 60-120 degree rhombus.
+  for (int pass = 0; passes > 0 && pass < kMeanPasses; ++pass)
+    for (size_t i = first_free; i < n; ++i) {
+      if (neighbours[i].empty()) continue;
+      double reach = 0;
+      for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
+      raise_mean(m, map, i, around[i], kMeanStep * reach / static_cast<double>(neighbours[i].size()));
+    }
   // What the passes left folded: rounds of search over the nodes of folded elements, then their
   // neighbours (a folded quad can need a neighbour moved first), while any is left.
   for (int round = 0; passes > 0 && round < kUnfoldRounds; ++round) {
