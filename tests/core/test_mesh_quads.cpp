@@ -201,7 +201,7 @@ TEST_CASE("quad smoothing unfolds: interior nodes of an all-quad mesh thrown abo
     return n;
   };
   // Each interior node moved by up to 1.5 times its shortest edge, the same pseudo-random way each
-  // run: about half the quads fold or turn over. Two smoothing passes left one of them folded before the
+  // run: most quads fold or turn over. Two smoothing passes left one of them folded before the
   // rounds that unfold what the passes leave (each node's search was held by its neighbours' floor).
   std::uint64_t state = 12345;
   auto next = [&] {
@@ -214,10 +214,10 @@ TEST_CASE("quad smoothing unfolds: interior nodes of an all-quad mesh thrown abo
     map.lift(dm.uv[i], dm.xyz[i], &dm.normal[i]);
   }
   const int before = folded();
-  meshing::smooth_quads(dm, map, 2);
+  meshing::smooth_quads(dm, map, 2, false);
   const int after = folded();
   MESSAGE("quads folded or not convex in UV: ", before, " of ", dm.elements.size() / 4, " thrown about, ", after, " after two smoothing passes");
-  CHECK(5 * before > 2 * static_cast<int>(dm.elements.size() / 4));
+  CHECK(2 * before > static_cast<int>(dm.elements.size() / 4));
   CHECK(after == 0);
 }
 

@@ -44,7 +44,7 @@ void mesh_free(const TriMesh& mesh, const Topology& topo, const VectorXc& uv, co
   if (o.elements == Elements::Triangles) return;
   recombine(out, kMinQuadQuality);
   // All-quad meshes too: the quads split from smoothed quads start nearer their final shapes.
-  smooth_quads(out, map, o.smoothing_iterations);
+  smooth_quads(out, map, o.smoothing_iterations, o.elements == Elements::QuadDominant);
   if (o.elements != Elements::Quads) return;
   if (o.max_elements > 0 && static_cast<std::int64_t>(split_count(out)) > o.max_elements)
     fail(Errc::invalid_argument, "the all-quad mesh needs more than max_elements = " + std::to_string(o.max_elements) + " quads at size " + std::to_string(o.size));

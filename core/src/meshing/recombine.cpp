@@ -142,62 +142,60 @@ double worst_of(const DomainMesh& m, const std::vector<size_t>& es) {
 // The scaled Jacobian the quads around a folded element keep while a compass search unfolds it.
 constexpr double kUnfoldedFloor = 1e-3;
 
-// Compass search on the worst element around node i (8 directions, the step halved 6 times from
-// `step`): where a Laplacian move cannot lift a poor element (a quad split from a sliver, or folded
-// next to a chord's midpoint) a move towards no particular point often can. Keeps the best position
-// at which no quad that had a scaled Jacobian of `floor` falls below it (a triangle lifted at a
-// quad's expense would break the quads' bar).
-void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step, double floor) {
-  double best = worst_of(m, around);
-  // A folded element (or one not convex in UV) is worse than any valid one: while one is around, the
-  // quads at the floor may go below it, as long as none of them folds.
-  const double keep = best > 0 ? floor : kUnfoldedFloor;
-  std::vector<size_t> held;  // the quads at or above `keep`
-  for (size_t e : around)
-    if (m.elements[4 * e + 3] >= 0 && element_quality(m, e) >= keep) held.push_back(e);
+// Compass moves of node i: 8 directions from the best position so far, the step halved `levels` - 1
+// times; a position is kept where `score` (of the mesh with the node there) beats the best so far,
+// a score of -inf refusing it. The node ends at the best position.
+template <class Score>
+void compass(DomainMesh& m, const SurfaceMap& map, size_t i, double step, int levels, double best, const Score& score) {
   P2 best_uv = m.uv[i];
   Vec3 best_xyz = m.xyz[i], best_normal = m.normal[i];
-  for (int level = 0; level < 6; ++level, step *= 0.5)
+  for (int level = 0; level < levels; ++level, step *= 0.5)
     for (int dir = 0; dir < 8; ++dir) {
       m.uv[i] = best_uv + step * P2(std::cos(dir * 0.25 * kPi), std::sin(dir * 0.25 * kPi));
       Vec3 x, nrm;
       if (!map.lift(m.uv[i], x, &nrm)) continue;
       m.xyz[i] = x, m.normal[i] = nrm;
-      const double w = worst_of(m, around);
-      if (w > best + 1e-12 && !(worst_of(m, held) < keep)) best = w, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
+      const double s = score();
+      if (s > best + 1e-12) best = s, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
     }
   m.uv[i] = best_uv, m.xyz[i] = best_xyz, m.normal[i] = best_normal;
 }
 
-// Compass search on the sum of log qualities around node i (8 directions, the step halved twice from
-// `step`), keeping the worst element around it no worse: the geometric mean rewards squaring every
-// quad a little over lifting one. Skips a node beside a folded element (compass_search's work).
+// Compass search on the worst element around node i (the step halved 6 times from `step`): where
+// a Laplacian move cannot lift a poor element (a quad split from a sliver, or folded next to a
+// chord's midpoint) a move towards no particular point often can. Keeps the best position at which
+// no quad that had a scaled Jacobian of `floor` falls below it (a triangle lifted at a quad's
+// expense would break the quads' bar).
+void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step, double floor) {
+  const double now = worst_of(m, around);
+  // A folded element (or one not convex in UV) is worse than any valid one: while one is around, the
+  // quads at the floor may go below it, as long as none of them folds.
+  const double keep = now > 0 ? floor : kUnfoldedFloor;
+  std::vector<size_t> held;  // the quads at or above `keep`
+  for (size_t e : around)
+    if (m.elements[4 * e + 3] >= 0 && element_quality(m, e) >= keep) held.push_back(e);
+  compass(m, map, i, step, 6, now, [&] { return worst_of(m, held) < keep ? -HUGE_VAL : worst_of(m, around); });
+}
+
+// Compass search on the sum of log qualities around node i (the step halved twice from `step`),
+// keeping the worst element around it no worse: the geometric mean rewards squaring every quad a
+// little over lifting one. Skips a node beside a folded element (compass_search's work).
 void raise_mean(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step) {
-  auto score = [&](double& worst) {
-    double sum = 0;
-    worst = 2;
+  double worst = 2, sum = 0;
+  auto measure = [&] {
+    worst = 2, sum = 0;
     for (size_t e : around) {
       const double q = element_quality(m, e);
       worst = std::min(worst, q), sum += std::log(std::max(q, 1e-12));
     }
-    return sum;
   };
-  double worst = 0;
-  double best = score(worst);
-  if (!(worst > 0)) return;
-  P2 best_uv = m.uv[i];
-  Vec3 best_xyz = m.xyz[i], best_normal = m.normal[i];
-  for (int level = 0; level < 3; ++level, step *= 0.5)
-    for (int dir = 0; dir < 8; ++dir) {
-      m.uv[i] = best_uv + step * P2(std::cos(dir * 0.25 * kPi), std::sin(dir * 0.25 * kPi));
-      Vec3 x, nrm;
-      if (!map.lift(m.uv[i], x, &nrm)) continue;
-      m.xyz[i] = x, m.normal[i] = nrm;
-      double w = 0;
-      const double sum = score(w);
-      if (w >= worst && sum > best + 1e-12) best = sum, best_uv = m.uv[i], best_xyz = x, best_normal = nrm;
-    }
-  m.uv[i] = best_uv, m.xyz[i] = best_xyz, m.normal[i] = best_normal;
+  measure();
+  const double floor = worst;
+  if (!(floor > 0)) return;
+  compass(m, map, i, step, 3, sum, [&] {
+    measure();
+    return worst >= floor ? sum : -HUGE_VAL;
+  });
 }
 
 // Passes of raise_mean after the Laplacian ones (more gain little: docs/PERFORMANCE.md), and its
@@ -257,7 +255,7 @@ P2 nearest_point(const SurfaceMap& map, const P2& start, const Vec3& target, dou
 
 }  // namespace
 
-void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
+void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mean) {
   if (m.nodes_per_element != 4) return;
   const size_t ne = m.elements.size() / 4, n = m.uv.size();
   std::vector<std::vector<size_t>> around(n);
@@ -318,7 +316,7 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes) {
   }
   // Then for the elements' shapes on the whole: the Laplacian target is the neighbours' mean, which
   // leaves a quad split from two near-equilateral triangles a 60-120 degree rhombus.
-  for (int pass = 0; passes > 0 && pass < kMeanPasses; ++pass)
+  for (int pass = 0; for_mean && passes > 0 && pass < kMeanPasses; ++pass)
     for (size_t i = first_free; i < n; ++i) {
       if (neighbours[i].empty()) continue;
       double reach = 0;
@@ -480,11 +478,11 @@ void split_and_smooth(DomainMesh& m, const SurfaceMap& map, int passes, double f
   };
   DomainMesh other = m;
   split_into_quads(m, map, SplitNodes::nearest_3d);
-  smooth_quads(m, map, passes);
+  smooth_quads(m, map, passes, false);
   const double nearest = worst(m);
   if (!(nearest < floor)) return;
   split_into_quads(other, map, SplitNodes::uv_middles);
-  smooth_quads(other, map, passes);
+  smooth_quads(other, map, passes, false);
   if (worst(other) > nearest) m = std::move(other);
 }
 

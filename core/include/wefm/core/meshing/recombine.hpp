@@ -18,8 +18,10 @@ void recombine(DomainMesh& m, double min_quality);
 // Moves the nodes inside the face (from boundary_nodes on) of a quad-dominant or all-quad mesh
 // towards the mean of their neighbours in UV, `passes` times, each move kept only where the worst
 // element around the node gets no worse and the elements round it better on the whole (scaled
-// Jacobian of quads, Lo lambda of triangles, in 3D; quads kept convex in UV).
-void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes);
+// Jacobian of quads, Lo lambda of triangles, in 3D; quads kept convex in UV). With `for_mean`, then
+// a few passes of compass moves for the elements' geometric mean, the worst around each node no
+// worse: for quad-dominant meshes; an all-quad mesh has four times the nodes for less gain.
+void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mean);
 
 // Where split_into_quads puts a new node inside the face: at the UV middle of its edge or element,
 // lifted; or at the UV point (on its edge's UV segment for an edge's middle) whose lift is nearest
@@ -40,7 +42,7 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map, SplitNodes place);
 size_t split_count(const DomainMesh& m);
 
 // All-quad: split_into_quads with the new nodes nearest their 3D targets, then smooth_quads
-// (`passes`). Where an element is left below `floor` (a scaled Jacobian; -1 for a quad not convex
+// (`passes`, not for the mean). Where an element is left below `floor` (a scaled Jacobian; -1 for a quad not convex
 // in UV), the split at the UV middles is smoothed too, and the one with the better worst element
 // kept: each placement leaves folds on faces where the other leaves none.
 void split_and_smooth(DomainMesh& m, const SurfaceMap& map, int passes, double floor);
