@@ -225,9 +225,10 @@ P2 nearest_on_segment(const SurfaceMap& map, const P2& a, const P2& b, const Vec
   const P2 start = 0.5 * (a + b);
   double t = 0.5;
   for (int k = 0; k < kNearestSteps; ++k) {
+    const P2 p = a + t * (b - a);
     Eigen::Matrix<double, 3, 2> J;
     Vec3 x;
-    if (!map.lift(a + t * (b - a), x) || !map.jacobian(a + t * (b - a), J)) break;
+    if (!map.lift(p, x) || !map.jacobian(p, J)) break;
     const Vec3 g = J * (b - a);
     const double gg = g.squaredNorm();
     if (!(gg > 0)) break;
@@ -416,10 +417,15 @@ void split_into_quads(DomainMesh& m, const SurfaceMap& map, SplitNodes place) {
     centroid /= n, mean /= n;
     Index ms[4];
     for (int k = 0; k < n; ++k) ms[k] = midpoint(v[k], v[(k + 1) % n]);
-    // The centre nearest the corners' 3D mean, as long as the element's quads stay convex in UV.
-    double reach = HUGE_VAL;
-    for (int k = 0; k < n; ++k) reach = std::min(reach, (uv[static_cast<size_t>(ms[k])] - centroid).norm());
-    const Index c = add(place == SplitNodes::uv_middles ? centroid : nearest_point(map, centroid, mean, 0.5 * reach), false, nullptr);
+    // The centre nearest the corners' 3D mean, as long as the element's quads stay convex in UV; each
+    // step short of the midpoints.
+    P2 at = centroid;
+    if (place == SplitNodes::nearest_3d) {
+      double reach = HUGE_VAL;
+      for (int k = 0; k < n; ++k) reach = std::min(reach, (uv[static_cast<size_t>(ms[k])] - centroid).norm());
+      at = nearest_point(map, centroid, mean, 0.5 * reach);
+    }
+    const Index c = add(at, false, nullptr);
     auto quads_convex = [&] {
       for (int k = 0; k < n; ++k)
         if (!convex_in_uv(uv, {v[k], ms[k], c, ms[(k + n - 1) % n]})) return false;
