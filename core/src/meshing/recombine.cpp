@@ -139,6 +139,13 @@ double worst_of(const DomainMesh& m, const std::vector<size_t>& es) {
   return w;
 }
 
+// The worst quality over all of m's elements.
+double worst_of(const DomainMesh& m) {
+  double w = 2;
+  for (size_t e = 0; e < m.elements.size() / 4; ++e) w = std::min(w, element_quality(m, e));
+  return w;
+}
+
 // The scaled Jacobian the quads around a folded element keep while a compass search unfolds it.
 constexpr double kUnfoldedFloor = 1e-3;
 
@@ -477,19 +484,14 @@ size_t split_count(const DomainMesh& m) {
 
 void split_and_smooth(DomainMesh& m, const SurfaceMap& map, int passes, double floor) {
   if (m.nodes_per_element != 4) return;
-  auto worst = [](const DomainMesh& d) {
-    double w = 2;
-    for (size_t e = 0; e < d.elements.size() / 4; ++e) w = std::min(w, element_quality(d, e));
-    return w;
-  };
   DomainMesh other = m;
   split_into_quads(m, map, SplitNodes::nearest_3d);
   smooth_quads(m, map, passes, false);
-  const double nearest = worst(m);
+  const double nearest = worst_of(m);
   if (!(nearest < floor)) return;
   split_into_quads(other, map, SplitNodes::uv_middles);
   smooth_quads(other, map, passes, false);
-  if (worst(other) > nearest) m = std::move(other);
+  if (worst_of(other) > nearest) m = std::move(other);
 }
 
 }  // namespace wefm::meshing
