@@ -391,11 +391,14 @@ ConformityCounts ModelMesh::conformity() const {
     out.unexplained_open_edges += n < want;
     out.unexplained_non_manifold_edges += n > want;
   });
-  // A model-edge segment no triangle uses at all is a gap as well (both faces left it out).
+  // A model-edge segment no triangle uses at all is a gap as well (both faces left it out). Its faces
+  // are those of the triangles at its ends (a lost cone apex has none; the seam node beside it does).
+  std::unordered_set<int32_t> gap_ends;
   for (const auto& [key, want] : expected_uses_)
     if (!edges.uses(static_cast<int32_t>(key >> 32), static_cast<int32_t>(key & 0xffffffffULL))) {
       out.unexplained_open_edges += 1;
       note_defect(out, key, 0, want);
+      gap_ends.insert(static_cast<int32_t>(key >> 32)), gap_ends.insert(static_cast<int32_t>(key & 0xffffffffULL));
     }
   std::vector<int> faces;
   for (size_t t = 0; t + 2 < tris_.size(); t += 3) {
@@ -404,6 +407,7 @@ ConformityCounts ModelMesh::conformity() const {
     out.zero_area_triangles += bad;
     for (size_t c = 0; c < 3 && !bad && !defect_edges.empty(); ++c)
       bad = defect_edges.count(pair_key(tris_[t + c], tris_[t + (c + 1) % 3])) > 0;
+    for (size_t c = 0; c < 3 && !bad && !gap_ends.empty(); ++c) bad = gap_ends.count(tris_[t + c]) > 0;
     if (bad) faces.push_back(tri_face_[t / 3]);
   }
   std::sort(faces.begin(), faces.end());
