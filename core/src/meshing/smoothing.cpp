@@ -11,13 +11,18 @@
 namespace wefm::meshing {
 
 bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, const SpanRule& rule, Vec3* middle) {
-  if (!((b - a).squaredNorm() >= rule.shortest * rule.shortest)) return false;
+  const Vec3 e = b - a;
+  // The two copies of a seam's end beside a cone's apex or a pole are one point in 3D: an edge
+  // between them makes the triangle on it a fold (welded, it vanishes and the apex with it), however
+  // short the edge. Only they are checked below the shortest span.
+  const bool one_point = e.squaredNorm() <= kSamePoint * kSamePoint * (ua - ub).squaredNorm();
+  if (!one_point && !(e.squaredNorm() >= rule.shortest * rule.shortest)) return false;
   Vec3 x;
   if (!map.lift(0.5 * (ua + ub), x)) return false;
   if (middle) *middle = x;
+  if (one_point) return (x - a).squaredNorm() > kSamePoint * kSamePoint * (ua - ub).squaredNorm();
   // From the line, not from the chord's middle: where the flattening stretches, the UV middle lifts
   // to a point along the edge, not beside it.
-  const Vec3 e = b - a;
   return (x - a).cross(e).norm() > rule.sag * e.squaredNorm();
 }
 
@@ -60,30 +65,118 @@ Index across(const NodeTriangles& around, const std::vector<Tri3>& tris, Index a
   return -1;
 }
 
+// Boundary nodes that are copies of one point: the two sides of a seam, the nodes of a degenerate
+// edge at a pole. Welded into the model mesh they become one node, so a node joined to two copies
+// of one point gets two edges on one 3D segment there, each with two triangles: beside a cone's
+// apex, whose domain corner is narrower than about 150 degrees, a fan of two good triangles from the
+// apex to one node across the cone is one triangle twice, once each way, and welding loses the apex.
+class SeamCopies {
+ public:
+  // Boundary nodes (below `fixed`) closer in 3D than kSamePoint of their UV distance, found through
+  // cells of the largest such distance (a plane face has all its nodes at one x or another).
+  SeamCopies(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index fixed) : point_(static_cast<size_t>(fixed), -1) {
+    double span = 0;
+    for (Index v = 0; v < fixed; ++v) span = std::max(span, (uv[static_cast<size_t>(v)] - uv[0]).norm());
+    const double cell = kSamePoint * 2 * span;
+    if (!(cell > 0)) return;
+    using Cell = std::array<std::int64_t, 3>;
+    auto cell_of = [&](Index v) {
+      Cell c;
+      for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = static_cast<std::int64_t>(std::floor(std::clamp(xyz[static_cast<size_t>(v)][k] / cell, -1e15, 1e15)));
+      return c;
+    };
+    std::vector<std::pair<Cell, Index>> cells(static_cast<size_t>(fixed));
+    for (Index v = 0; v < fixed; ++v) cells[static_cast<size_t>(v)] = {cell_of(v), v};
+    std::sort(cells.begin(), cells.end());
+    for (Index p = 0; p < fixed; ++p) {
+      const Cell c = cell_of(p);
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (std::int64_t dy = -1; dy <= 1; ++dy)
+          for (std::int64_t dz = -1; dz <= 1; ++dz) {
+            const Cell n{c[0] + dx, c[1] + dy, c[2] + dz};
+            for (auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(n, Index{-1})); it != cells.end() && it->first == n; ++it) {
+              const Index q = it->second;
+              if (q <= p || (xyz[static_cast<size_t>(p)] - xyz[static_cast<size_t>(q)]).squaredNorm() >
+                                kSamePoint * kSamePoint * (uv[static_cast<size_t>(p)] - uv[static_cast<size_t>(q)]).squaredNorm())
+                continue;
+              join(p, q);
+            }
+          }
+    }
+  }
+  bool any() const { return any_; }
+  // The point node v is a copy of (one of its copies' index), -1 for none.
+  Index point(Index v) const { return static_cast<size_t>(v) < point_.size() ? point_[static_cast<size_t>(v)] : -1; }
+  // Whether p and q are one point: the same node or copies.
+  bool same(Index p, Index q) const { return p == q || (point(p) >= 0 && point(p) == point(q)); }
+
+ private:
+  // Puts p and q on one point.
+  void join(Index p, Index q) {
+    Index& lp = point_[static_cast<size_t>(p)];
+    Index& lq = point_[static_cast<size_t>(q)];
+    if (lp < 0 && lq < 0) {
+      lp = lq = std::min(p, q);
+    } else if (lp < 0) {
+      lp = lq;
+    } else if (lq < 0) {
+      lq = lp;
+    } else if (lp != lq) {  // two points found to be one only through a third copy: rare, relabelled in full
+      const Index from = std::max(lp, lq), to = std::min(lp, lq);
+      for (Index& x : point_)
+        if (x == from) x = to;
+    }
+    any_ = true;
+  }
+
+  std::vector<Index> point_;
+  bool any_ = false;
+};
+
+// Whether node `from` (its triangles `around` it, current) has an edge to a copy of `to`'s point
+// other than `to`.
+bool joins_copy(const NodeTriangles& around, const std::vector<Tri3>& tris, const SeamCopies& copies, Index from, Index to) {
+  if (copies.point(to) < 0) return false;
+  for (Index k = around.start[static_cast<size_t>(from)]; k < around.start[static_cast<size_t>(from) + 1]; ++k) {
+    const Tri3& U = tris[static_cast<size_t>(around.items[static_cast<size_t>(k)])];
+    if (std::find(U.begin(), U.end(), from) == U.end()) continue;  // flipped away earlier in the pass
+    for (Index q : U)
+      if (q != to && q != from && copies.same(q, to)) return true;
+  }
+  return false;
+}
+
 // Whether flipping the edge b-c of (a, b, c) and (d, c, b) to (a, b, d) and (d, c, a) would make a
-// fold: a new triangle on the same three points as the other or as a neighbour, once each way. At
-// the end of a seam the two copies of a seam node are one point; a flip there can leave the end
-// node two triangles that reach the same node on both sides of the seam, which welding turns into
-// one sliver both ways, and the end node is lost from the model mesh.
-bool makes_fold(const NodeTriangles& around, const std::vector<Tri3>& tris, const std::vector<Vec3>& xyz, Index a, Index b, Index c, Index d) {
-  auto same_point = [&](Index p, Index q) { return xyz[static_cast<size_t>(p)] == xyz[static_cast<size_t>(q)]; };
-  auto apex_is = [&](Index from, Index to, Index opposite) {  // the neighbour across from -> to has its apex at `opposite`
+// fold: a new triangle on the same three points as the other or as a neighbour, once each way, or
+// the new edge a-d beside an edge from one of its ends to a copy of the other's point (SeamCopies).
+// `stale`: nodes that gained a triangle earlier in the pass, whose lists in `around` miss it; a flip
+// that needs their edges waits for the next pass.
+bool makes_fold(const NodeTriangles& around, const std::vector<Tri3>& tris, const SeamCopies& copies, const std::vector<char>& stale, Index a,
+                Index b, Index c, Index d) {
+  if (copies.same(b, c)) return true;
+  // The neighbour across from -> to has its apex at `opposite`. Looked for around both ends: a
+  // triangle flipped earlier in the pass is listed around the two corners it kept, not the new one.
+  auto apex_is = [&](Index from, Index to, Index opposite) {
     int m = -1;
-    const Index u = across(around, tris, from, from, to, &m);
-    return u >= 0 && same_point(tris[static_cast<size_t>(u)][static_cast<size_t>(m)], opposite);
+    Index u = across(around, tris, from, from, to, &m);
+    if (u < 0) u = across(around, tris, to, from, to, &m);
+    return u >= 0 && copies.same(tris[static_cast<size_t>(u)][static_cast<size_t>(m)], opposite);
   };
-  return same_point(b, c) || apex_is(a, b, d) || apex_is(b, d, a) || apex_is(d, c, a) || apex_is(c, a, d);
+  if (apex_is(a, b, d) || apex_is(b, d, a) || apex_is(d, c, a) || apex_is(c, a, d)) return true;
+  if (copies.point(a) < 0 && copies.point(d) < 0) return false;
+  if (stale[static_cast<size_t>(a)] || stale[static_cast<size_t>(d)]) return true;
+  return joins_copy(around, tris, copies, a, d) || joins_copy(around, tris, copies, d, a);
 }
 
 std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index fixed, const HardEdges& hard,
-                       const SurfaceMap& map, const SpanRule& span) {
+                       const SurfaceMap& map, const SpanRule& span, const SeamCopies& copies) {
   // The triangles around each node, as they were when the pass started (counting sort): the
   // neighbour across an edge is the other triangle around one of its ends that holds the edge
   // reversed. Flipped triangles are marked and left alone for the rest of the pass, so the stale
   // lists never mislead. A hash of all edges cost 20 % of meshing time on a 145k-triangle square.
   const size_t nv = uv.size();
   const NodeTriangles around = node_triangles(nv, tris);
-  std::vector<char> touched(tris.size(), 0);
+  std::vector<char> touched(tris.size(), 0), stale(nv, 0);
   // A triangle's quality is asked for once per edge; it cannot change before the triangle is
   // flipped (no node moves here), and a flipped triangle is not looked at again in this pass. Kept
   // per starting corner: lambda's rounding depends on the order of the corners.
@@ -113,10 +206,11 @@ std::int64_t flip_pass(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, 
       const double q1 = quality(uv, xyz, a, b, d);
       if (!(q1 > old_q + 1e-9)) continue;
       const double new_q = std::min(q1, quality(uv, xyz, d, c, a));
-      if (new_q > old_q + 1e-9 && !makes_fold(around, tris, xyz, a, b, c, d) && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span))) {
+      if (new_q > old_q + 1e-9 && !makes_fold(around, tris, copies, stale, a, b, c, d) && !(d < fixed && c < fixed && spans_face(uv[static_cast<size_t>(d)], uv[static_cast<size_t>(c)], xyz[static_cast<size_t>(d)], xyz[static_cast<size_t>(c)], map, span))) {
         tris[static_cast<size_t>(t)] = {a, b, d};
         tris[static_cast<size_t>(s)] = {d, c, a};
         touched[static_cast<size_t>(s)] = touched[static_cast<size_t>(t)] = 1;
+        stale[static_cast<size_t>(a)] = stale[static_cast<size_t>(d)] = 1;
         ++flips;
       }
     }
@@ -372,6 +466,22 @@ std::int64_t split_pass(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector
   return splits;
 }
 
+// Splits the edge a -> b of triangle t = (a, b, c), with s = (b, a, d) across it, at its UV middle
+// lifted to `x`: four triangles around the new node, which then moves for their worst quality.
+void split_edge(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, Index t, Index s, Index d, const Vec3& x, NodeStar& star,
+                const SurfaceMap& map) {
+  const Tri3 T = tris[static_cast<size_t>(t)];
+  const Index a = T[0], b = T[1], c = T[2];
+  const Index v = static_cast<Index>(uv.size());
+  uv.push_back(0.5 * (uv[static_cast<size_t>(a)] + uv[static_cast<size_t>(b)])), xyz.push_back(x);
+  const Index t2 = static_cast<Index>(tris.size());
+  tris[static_cast<size_t>(t)] = {a, v, c}, tris[static_cast<size_t>(s)] = {b, v, d};
+  tris.push_back({v, b, c}), tris.push_back({v, a, d});
+  const std::array<Index, 4> four{t, s, t2, t2 + 1};
+  star.reset(four.data(), four.data() + 4);
+  move_node(uv, xyz, tris, v, star, map);
+}
+
 // Splits edges between two boundary nodes that span the face (spans_face) at their UV middle,
 // lifted, the new node then moved for the worst quality of its four triangles. The mesher splits
 // them before improvement and flips never make one; this mends what the moves left. Returns the
@@ -386,26 +496,79 @@ std::int64_t split_spanning(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::ve
   for (Index t = 0; t < count; ++t)
     for (int i = 0; i < 3 && !touched[static_cast<size_t>(t)]; ++i) {
       const Tri3 T = tris[static_cast<size_t>(t)];
-      const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)], c = T[static_cast<size_t>((i + 2) % 3)];
+      const Index a = T[static_cast<size_t>(i)], b = T[static_cast<size_t>((i + 1) % 3)];
       if (a >= fixed || b >= fixed || hard.has(a, b)) continue;
       int m = -1;
       const Index s = across(around, tris, a, a, b, &m);
       if (s < 0 || touched[static_cast<size_t>(s)]) continue;  // a boundary segment, or changed already
-      const Index d = tris[static_cast<size_t>(s)][static_cast<size_t>(m)];
-      const P2 middle = 0.5 * (uv[static_cast<size_t>(a)] + uv[static_cast<size_t>(b)]);
       Vec3 x;
       if (!spans_face(uv[static_cast<size_t>(a)], uv[static_cast<size_t>(b)], xyz[static_cast<size_t>(a)], xyz[static_cast<size_t>(b)], map, span, &x)) continue;
-      const Index v = static_cast<Index>(uv.size());
-      uv.push_back(middle), xyz.push_back(x);
-      const Index t2 = static_cast<Index>(tris.size());
-      tris[static_cast<size_t>(t)] = {a, v, c}, tris[static_cast<size_t>(s)] = {b, v, d};
-      tris.push_back({v, b, c}), tris.push_back({v, a, d});
+      tris[static_cast<size_t>(t)] = {a, b, T[static_cast<size_t>((i + 2) % 3)]};
+      split_edge(uv, xyz, tris, t, s, tris[static_cast<size_t>(s)][static_cast<size_t>(m)], x, star, map);
       touched[static_cast<size_t>(t)] = touched[static_cast<size_t>(s)] = 1;
-      const std::array<Index, 4> four{t, s, t2, t2 + 1};
-      star.reset(four.data(), four.data() + 4);
-      move_node(uv, xyz, tris, v, star, map);
       ++splits;
     }
+  return splits;
+}
+
+// Splits the edges that join a node to two copies of one point (SeamCopies), each at its UV middle:
+// welded, each pair would be one edge of four triangles, or, beside a cone's apex, a fold that takes
+// the apex with it. The fan there then gets four triangles. Edges on the boundary stay (the apex
+// itself joins both copies along the seam), and so does an edge whose triangles another split
+// changed in this call. Returns the edges split.
+std::int64_t split_folds(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vector<Tri3>& tris, const HardEdges& hard, const SurfaceMap& map,
+                         const SeamCopies& copies) {
+  if (!copies.any()) return 0;
+  // (node, point, copy) for every edge from a node to a copy of a point other than its own; and
+  // (node, point) for every triangle from a node to two copies of one point (along a degenerate edge
+  // at a pole), which welding drops, leaving one edge where there were two.
+  std::vector<std::array<Index, 3>> joins;
+  std::vector<std::array<Index, 2>> collapsing;
+  for (const Tri3& T : tris)
+    for (size_t i = 0; i < 3; ++i) {
+      const Index p = T[i], q = T[(i + 1) % 3], r = T[(i + 2) % 3];
+      if (copies.point(q) >= 0 && !copies.same(p, q)) joins.push_back({p, copies.point(q), q});
+      if (copies.point(p) >= 0 && !copies.same(p, q)) joins.push_back({q, copies.point(p), p});
+      if (q != r && copies.same(q, r) && !copies.same(p, q)) collapsing.push_back({p, copies.point(q)});
+    }
+  std::sort(joins.begin(), joins.end());
+  joins.erase(std::unique(joins.begin(), joins.end()), joins.end());
+  std::sort(collapsing.begin(), collapsing.end());
+  const NodeTriangles around = node_triangles(uv.size(), tris);
+  std::vector<char> touched(tris.size(), 0);
+  NodeStar star(uv, xyz, tris);
+  std::int64_t splits = 0;
+  // Splits the inner edge x-q from a triangle around x that holds it, unless changed already.
+  auto split = [&](Index x, Index q) {
+    for (Index k = around.start[static_cast<size_t>(x)]; k < around.start[static_cast<size_t>(x) + 1]; ++k) {
+      const Index u = around.items[static_cast<size_t>(k)];
+      const Tri3 U = tris[static_cast<size_t>(u)];
+      for (size_t i = 0; i < 3; ++i) {
+        const Index p = U[i], r = U[(i + 1) % 3];
+        if (!((p == x && r == q) || (p == q && r == x))) continue;
+        int m = -1;
+        const Index w = across(around, tris, p, p, r, &m);
+        if (w < 0 || touched[static_cast<size_t>(u)] || touched[static_cast<size_t>(w)] || hard.has(p, r)) return;
+        Vec3 mid;
+        if (!map.lift(0.5 * (uv[static_cast<size_t>(p)] + uv[static_cast<size_t>(r)]), mid)) return;
+        tris[static_cast<size_t>(u)] = {p, r, U[(i + 2) % 3]};
+        split_edge(uv, xyz, tris, u, w, tris[static_cast<size_t>(w)][static_cast<size_t>(m)], mid, star, map);
+        touched[static_cast<size_t>(u)] = touched[static_cast<size_t>(w)] = 1;
+        ++splits;
+        return;
+      }
+    }
+  };
+  for (size_t g = 0; g < joins.size();) {
+    size_t e = g + 1;
+    while (e < joins.size() && joins[e][0] == joins[g][0] && joins[e][1] == joins[g][1]) ++e;
+    // k copies joined by k - 1 collapsing triangles weld into one edge.
+    const std::array<Index, 2> key{joins[g][0], joins[g][1]};
+    const auto chain = std::equal_range(collapsing.begin(), collapsing.end(), key);
+    if (e - g >= 2 && static_cast<size_t>(chain.second - chain.first) + 1 < e - g)
+      for (size_t k = g; k < e; ++k) split(joins[k][0], joins[k][2]);
+    g = e;
+  }
   return splits;
 }
 
@@ -425,12 +588,16 @@ std::int64_t improve_in_3d(std::vector<P2>& uv, std::vector<Vec3>& xyz, std::vec
   // sweeps of a converged mesh cost a full pass each and change no figure.
   const std::int64_t few_flips = std::max<std::int64_t>(1, static_cast<std::int64_t>(tris.size()) / 1000);
   const std::int64_t few_moves = std::max<std::int64_t>(1, (static_cast<std::int64_t>(uv.size()) - fixed) / 200);
+  const SeamCopies copies(uv, xyz, fixed);
   auto flips = [&] {
     for (int k = 0; k < 8; ++k) {
       check();
-      if (flip_pass(uv, xyz, tris, fixed, hard, map, span) < few_flips) break;
+      if (flip_pass(uv, xyz, tris, fixed, hard, map, span, copies) < few_flips) break;
     }
   };
+  // Before the flips: they never make such an edge (makes_fold), and the moves shape the new nodes' stars.
+  for (int it = 0; it < kSplitRounds; ++it)
+    if (split_folds(uv, xyz, tris, hard, map, copies) == 0) break;
   std::int64_t total = 0;
   for (int it = 0; it < iterations; ++it) {
     flips();

@@ -26,6 +26,9 @@ constexpr double kSpanSag = 0.25;
 // that face's edge too: a diagonal across a half tube twice as long as the tube is wide lies 0.24 of
 // its length off the surface, and a coarse half tube's chords are shorter than half the size.
 constexpr double kChordSag = 0.1;
+// Two boundary nodes closer in 3D than this fraction of their UV distance are copies of one point
+// (the two sides of a seam at a cone's apex or a pole): the domain keeps lengths near their 3D ones.
+constexpr double kSamePoint = 1e-4;
 
 // Which edges between two boundary nodes span the face: from `shortest` long, with the surface at
 // their UV middle farther than `sag` of their length from their line.
