@@ -250,7 +250,7 @@ std::vector<char> ModelMesh::boundary_nodes(size_t nodes, const std::vector<int3
   return boundary;
 }
 
-void ModelMesh::resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2) const {
+void ModelMesh::resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2, bool always) const {
   auto has = [](const std::array<int32_t, 3>& t, int32_t v) { return t[0] == v || t[1] == v || t[2] == v; };
   int k1 = 0, k2 = 0;
   while (k1 < 3 && has(t2, t1[static_cast<size_t>(k1)])) ++k1;
@@ -262,7 +262,42 @@ void ModelMesh::resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>&
   auto lambda = [&](int32_t a, int32_t b, int32_t c) {
     return wefm_common::lo_lambda(&xyz_[3 * static_cast<size_t>(a)], &xyz_[3 * static_cast<size_t>(b)], &xyz_[3 * static_cast<size_t>(c)]);
   };
-  if (std::min(lambda(u, s1, w), lambda(u, w, s2)) > std::min(lambda(u, s1, s2), lambda(w, s2, s1))) t1 = {u, s1, w}, t2 = {u, w, s2};
+  if (always || std::min(lambda(u, s1, w), lambda(u, w, s2)) > std::min(lambda(u, s1, s2), lambda(w, s2, s1))) t1 = {u, s1, w}, t2 = {u, w, s2};
+}
+
+std::vector<char> ModelMesh::folds_of(const std::vector<std::array<int32_t, 3>>& tris) {
+  std::vector<std::pair<std::array<int32_t, 3>, size_t>> by_corners;
+  for (size_t i = 0; i < tris.size(); ++i) {
+    std::array<int32_t, 3> key = tris[i];
+    std::sort(key.begin(), key.end());
+    by_corners.push_back({key, i});
+  }
+  std::sort(by_corners.begin(), by_corners.end());
+  std::vector<char> fold(tris.size(), 0);
+  for (size_t k = 0; k + 1 < by_corners.size(); ++k)
+    if (by_corners[k].first == by_corners[k + 1].first) fold[by_corners[k].second] = fold[by_corners[k + 1].second] = 1;
+  return fold;
+}
+
+bool ModelMesh::resplit_bad_diagonals(std::vector<std::array<int32_t, 3>>& tris, const std::vector<int64_t>& quads,
+                                      const std::vector<char>& fold) const {
+  std::unordered_map<uint64_t, int> uses;
+  uses.reserve(3 * tris.size());
+  for (const auto& t : tris)
+    for (size_t c = 0; c < 3; ++c) ++uses[pair_key(t[c], t[(c + 1) % 3])];
+  bool resplit = false;
+  for (size_t i = 0; i + 1 < tris.size(); ++i) {
+    if (quads[i] < 0 || quads[i + 1] != quads[i]) continue;
+    int diagonal_uses = 0;  // of the edge the two halves share
+    for (size_t c = 0; c < 3; ++c)
+      for (size_t d = 0; d < 3; ++d) {
+        const uint64_t key = pair_key(tris[i][c], tris[i][(c + 1) % 3]);
+        if (pair_key(tris[i + 1][d], tris[i + 1][(d + 1) % 3]) == key) diagonal_uses = uses[key];
+      }
+    if (fold[i] || fold[i + 1] || diagonal_uses > 2) resplit_quad(tris[i], tris[i + 1], true), resplit = true;
+    ++i;
+  }
+  return resplit;
 }
 
 int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const std::vector<int32_t>& triangles,
@@ -288,7 +323,6 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
   std::vector<int> kept_tags;
   std::vector<int64_t> kept_quads;
   int32_t face_quads = 0;
-  std::vector<std::pair<std::array<int32_t, 3>, size_t>> by_corners;
   int64_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const int32_t a = global[static_cast<size_t>(triangles[t])], b = global[static_cast<size_t>(triangles[t + 1])],
@@ -306,15 +340,8 @@ int64_t ModelMesh::add_face(int face_tag, const std::vector<double>& xyz, const 
   next_quad_ += face_quads;
   for (size_t i = 0; i + 1 < kept.size(); ++i)
     if (kept_quads[i] >= 0 && kept_quads[i + 1] == kept_quads[i]) resplit_quad(kept[i], kept[i + 1]), ++i;
-  for (size_t i = 0; i < kept.size(); ++i) {
-    std::array<int32_t, 3> key = kept[i];
-    std::sort(key.begin(), key.end());
-    by_corners.push_back({key, i});
-  }
-  std::sort(by_corners.begin(), by_corners.end());
-  std::vector<char> fold(kept.size(), 0);
-  for (size_t k = 0; k + 1 < by_corners.size(); ++k)
-    if (by_corners[k].first == by_corners[k + 1].first) fold[by_corners[k].second] = fold[by_corners[k + 1].second] = 1;
+  std::vector<char> fold = folds_of(kept);
+  if (face_quads > 0 && resplit_bad_diagonals(kept, kept_quads, fold)) fold = folds_of(kept);
   for (size_t i = 0; i < kept.size(); ++i) {
     if (fold[i]) {
       ++dropped;

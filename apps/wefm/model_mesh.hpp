@@ -124,7 +124,17 @@ class ModelMesh {
   // better (Lo lambda, at the welded nodes): a quad with a corner near 180 degrees has a half of no
   // area across its shorter diagonal, or gets one when welding moves a node by up to the tolerance,
   // and the check would call that a defect.
-  void resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2) const;
+  // With `always`, the other diagonal whatever the quality: a half that folds onto a neighbouring
+  // triangle (at a cone's apex, one half of each of the two quads there spans the cone through its
+  // axis from the two sides of the seam) is no quad's only split.
+  void resplit_quad(std::array<int32_t, 3>& t1, std::array<int32_t, 3>& t2, bool always = false) const;
+  // Per triangle: whether another has the same three nodes (once each way: a zero-volume fold).
+  static std::vector<char> folds_of(const std::vector<std::array<int32_t, 3>>& tris);
+  // The quads (`quads`: per triangle, halves of one quad share a number >= 0, listed one after the
+  // other) whose halves are in a fold, or whose diagonal other triangles use too once welded (a node
+  // joined to both copies of a seam node), split the other way (resplit_quad): the diagonal is the
+  // check's, the file has the quad. Returns whether any was.
+  bool resplit_bad_diagonals(std::vector<std::array<int32_t, 3>>& tris, const std::vector<int64_t>& quads, const std::vector<char>& fold) const;
   int32_t find(const double* p) const;  // the welded node at p, or -1
   void note_defect(ConformityCounts& out, uint64_t key, int uses, int expected) const;
 

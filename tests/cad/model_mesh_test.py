@@ -345,23 +345,30 @@ def check_pointed_cone(wefm, path, tmp):
     triangles reaching one node across the cone from the two copies of the seam's first node. In 3D
     both are one triangle, once each way; welded, they vanished, the apex and its seam segment with
     them (1 edge no triangle used, exit 5, at every size). The apex is a node of the mesh now, with a
-    fan of three triangles or more, and no edge is used more than twice."""
+    fan of three triangles or more, and no edge is used more than twice. Quad meshes kept two quads
+    there, each split by the check along the diagonal that made the same fold: the two halves through
+    the axis were dropped, the apex with them, or along a diagonal that other elements used as well
+    once the seam's copies were welded. A quad with a half in a fold, or such a diagonal, is split the
+    other way."""
     apex = (0.0, 0.0, 1.3)
-    for ratio in ("0.025", "0.1"):
-        msh, rep = os.path.join(tmp, f"cone.{ratio}.msh"), os.path.join(tmp, f"cone.{ratio}.json")
-        p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", ratio, "-o", msh, "--report", rep, "-q"],
+    for ratio, elements, fan in (("0.025", "tri", 3), ("0.1", "tri", 3), ("0.025", "quad-dominant", 2), ("0.025", "quad", 2)):
+        msh, rep = os.path.join(tmp, f"cone.{ratio}.{elements}.msh"), os.path.join(tmp, f"cone.{ratio}.{elements}.json")
+        p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", ratio, "--elements", elements, "-o", msh, "--report", rep, "-q"],
                            capture_output=True, text=True, timeout=120)
-        assert p.returncode == 0, (ratio, p.returncode, p.stderr[-2000:])
-        c = json.load(open(rep))["conformity"]
-        assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0, (ratio, c)
-        faces, points = read_msh_faces(msh)
+        assert p.returncode == 0, (ratio, elements, p.returncode, p.stderr[-2000:])
+        r = json.load(open(rep))
+        c = r["conformity"]
+        assert c["unexplained_open_edges"] == 0 and c["unexplained_non_manifold_edges"] == 0, (ratio, elements, c)
+        # Right the first time: no repair round (a quad mesh at half the size hid it).
+        assert not any(f["edge_refinements"] or f["split_chords"] for f in r["faces"]), (ratio, elements)
+        faces, points = read_msh_faces(msh, (2, 3))
         tip = [v for v, x in points.items() if math.dist(x, apex) < 1e-6]
-        assert len(tip) == 1, (ratio, tip)
-        triangles = [t for tris in faces.values() for t in tris]
-        assert sum(1 for t in triangles if tip[0] in t) >= 3, ratio
-        uses = Counter(tuple(sorted((t[i], t[(i + 1) % 3]))) for t in triangles for i in range(3))
-        assert max(uses.values()) == 2, ratio
-    print("pointed_cone.brep: the apex kept, the mesh closed")
+        assert len(tip) == 1, (ratio, elements, tip)
+        elements_at = [e for es in faces.values() for e in es]
+        assert sum(1 for e in elements_at if tip[0] in e) >= fan, (ratio, elements)
+        uses = Counter(tuple(sorted((e[i], e[(i + 1) % len(e)]))) for e in elements_at for i in range(len(e)))
+        assert max(uses.values()) == 2, (ratio, elements)
+    print("pointed_cone.brep: the apex kept, the mesh closed, in triangles and quads")
 
 
 def main():
