@@ -16,9 +16,14 @@
 #include <numeric>
 #include <map>
 #include <set>
+#include <sstream>
 #include <unordered_map>
 
 #include <BRepAdaptor_Curve.hxx>
+#include <BRepCheck.hxx>
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepCheck_ListOfStatus.hxx>
+#include <BRepCheck_Result.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
@@ -469,6 +474,39 @@ std::string surface_type_name(const TopoDS_Face& face) {
   }
 }
 
+namespace {
+
+// What Open CASCADE's own check finds wrong with the face and its wires and edges, or "" where it
+// finds nothing but the tessellation's polygons: a face the import cannot take is often one the
+// modelling left invalid (a blend that failed), and the user should hear that before blaming the
+// mesher.
+std::string invalid_by_check(const TopoDS_Face& face) {
+  const BRepCheck_Analyzer check(face, Standard_True);
+  if (check.IsValid()) return "";
+  std::set<std::string> found;
+  auto note = [&](const TopoDS_Shape& shape) {
+    const Handle(BRepCheck_Result)& result = check.Result(shape);
+    if (result.IsNull()) return;
+    for (BRepCheck_ListOfStatus::Iterator it(result->Status()); it.More(); it.Next())
+      if (it.Value() != BRepCheck_NoError) {
+        std::ostringstream name;
+        BRepCheck::Print(it.Value(), name);
+        std::string text = name.str();
+        while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+        // The tessellation's polygons are BRepMesh's, checked too: not the model's fault.
+        if (text.find("Polygon") == std::string::npos && text.find("Triangulation") == std::string::npos) found.insert(text);
+      }
+  };
+  note(face);
+  for (TopExp_Explorer e(face, TopAbs_WIRE); e.More(); e.Next()) note(e.Current());
+  for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) note(e.Current());
+  std::string out;
+  for (const std::string& f : found) out += (out.empty() ? "" : ", ") + f;
+  return out;
+}
+
+}  // namespace
+
 CadFace import_face(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& edges, int index) {
   CadFace out;
   out.index = index;
@@ -479,6 +517,13 @@ CadFace import_face(const TopoDS_Face& face, const TopTools_IndexedMapOfShape& e
     out.error = std::string("Open CASCADE: ") + f.GetMessageString();
   } catch (const std::exception& e) {
     out.error = e.what();
+  }
+  if (!out.error.empty()) {
+    try {
+      if (const std::string why = invalid_by_check(face); !why.empty())
+        out.error += "; the B-rep face is invalid by Open CASCADE's own check (" + why + ")";
+    } catch (const Standard_Failure&) {
+    }
   }
   return out;
 }

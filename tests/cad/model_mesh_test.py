@@ -18,6 +18,11 @@ the triangle (0,0,0) (1,0,0) (0.9,0.2,0) extruded by 0.3 in z twice, `Save "x.br
 needle_cone.brep (tests/cad/data): a cone of base radius 0.04 and height 1.5 coming to a point; made with
 Gmsh 4.8 (OpenCASCADE factory: `Cone(1) = {0,0,0, 0,0,1.5, 0.04, 0}`, `Save "x.brep"`).
 
+chamfered_torus.step (tests/cad/data): a torus of radii 0.19 and 0.03 swept through 313 degrees, two of its
+edges chamfered by 0.018; made with Gmsh 4.8 (OpenCASCADE factory: `Torus`, `Chamfer`, written as STEP by
+`gmsh x.geo -0 -o x.step`). Read back, the chamfer's B-spline face is not valid by Open CASCADE's own
+check (BRepCheck_UnorientableShape) and BRepMesh gives it no facets.
+
 pointed_cone.brep (tests/cad/data): a cone of base radius 0.42 and height 1.3 coming to a point, its
 base edge filleted (radius 0.08); made with Gmsh 4.8 (OpenCASCADE factory: `Cone(1) = {0,0,0, 0,0,1.3,
 0.42, 0}`, `Fillet` of its edges, `Save "x.brep"`).
@@ -371,6 +376,19 @@ def check_pointed_cone(wefm, path, tmp):
     print("pointed_cone.brep: the apex kept, the mesh closed, in triangles and quads")
 
 
+def check_invalid_face(wefm, path, tmp):
+    """A face the import cannot take because the B-rep itself is broken: the run exits 5, names the
+    face, and says that Open CASCADE's own check rejects it, so the user looks at the model."""
+    msh, rep = os.path.join(tmp, "invalid.msh"), os.path.join(tmp, "invalid.json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 5, (p.returncode, p.stderr[-2000:])
+    failed = [f for f in json.load(open(rep))["faces"] if f["status"] == "failed"]
+    assert failed and all("invalid by Open CASCADE's own check" in f["reason"] for f in failed), failed
+    assert all(f"face {f['face']}" in p.stderr for f in failed), p.stderr[-2000:]
+    print(f"chamfered_torus.step: faces {[f['face'] for f in failed]} refused as invalid B-rep faces")
+
+
 def main():
     wefm, folder = sys.argv[1:3]
     others = ["b123d_M6x12_countersunk_screw.step", "gmsh_918_pump_carter_sup.stp", "occt_MODERN_Sink_1.brep", "gmsh_ellipses.brep", "pyocc_surf114.igs", "gmsh_component8.step"]
@@ -393,6 +411,7 @@ def main():
         check_conformal_first(wefm, folder, tmp)
         check_coincident_faces(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "touching_prisms.brep"), tmp)
         check_pointed_cone(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "pointed_cone.brep"), tmp)
+        check_invalid_face(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "chamfered_torus.step"), tmp)
     return 0
 
 
