@@ -112,8 +112,11 @@ def main():
             f.write(script(r))
         try:
             p = subprocess.run(["gmsh", geo, "-0", "-o", step], capture_output=True, text=True, timeout=60)
-            ok = p.returncode == 0 and "Error" not in p.stdout + p.stderr and os.path.getsize(step) >= 2000
-        except (subprocess.TimeoutExpired, OSError):
+            ok = p.returncode == 0 and "Error" not in p.stdout + p.stderr and os.path.exists(step) and os.path.getsize(step) >= 2000
+        except FileNotFoundError:
+            print("make_random_models.py: no gmsh command (scripts/install-deps.sh installs it)", file=sys.stderr)
+            return 1
+        except subprocess.TimeoutExpired:
             ok = False
         if not ok:
             for f in (geo, step):
