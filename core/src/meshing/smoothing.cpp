@@ -80,36 +80,33 @@ Index across(const NodeTriangles& around, const std::vector<Tri3>& tris, Index a
 // apex, whose domain corner is narrower than about 150 degrees, a fan of two good triangles from the
 // apex to one node across the cone is one triangle twice, once each way, and welding loses the apex.
 class SeamCopies {
+  // The unit, as a fraction of the boundary's 3D extent, in which copies are sorted together.
+  static constexpr double kQuantum = 1e-7;
+
  public:
-  // Boundary nodes (below `fixed`) closer in 3D than kSamePoint of their UV distance, found through
-  // cells of the largest such distance (a plane face has all its nodes at one x or another).
+  // Boundary nodes (below `fixed`) closer in 3D than kSamePoint of their UV distance. Copies are one
+  // point up to rounding, far below kQuantum of the boundary's extent: sorted by their points in those
+  // units, they come together (each is also checked against the next two, for copies on either side
+  // of a unit's edge in the last coordinate).
   SeamCopies(const std::vector<P2>& uv, const std::vector<Vec3>& xyz, Index fixed) : point_(static_cast<size_t>(fixed), -1) {
-    double span = 0;
-    for (Index v = 0; v < fixed; ++v) span = std::max(span, (uv[static_cast<size_t>(v)] - uv[0]).norm());
-    const double cell = kSamePoint * 2 * span;
-    if (!(cell > 0)) return;
-    using Cell = std::array<std::int64_t, 3>;
-    auto cell_of = [&](Index v) {
-      Cell c;
-      for (int k = 0; k < 3; ++k) c[static_cast<size_t>(k)] = static_cast<std::int64_t>(std::floor(std::clamp(xyz[static_cast<size_t>(v)][k] / cell, -1e15, 1e15)));
-      return c;
-    };
-    std::vector<std::pair<Cell, Index>> cells(static_cast<size_t>(fixed));
-    for (Index v = 0; v < fixed; ++v) cells[static_cast<size_t>(v)] = {cell_of(v), v};
-    std::sort(cells.begin(), cells.end());
-    for (Index p = 0; p < fixed; ++p) {
-      const Cell c = cell_of(p);
-      for (std::int64_t dx = -1; dx <= 1; ++dx)
-        for (std::int64_t dy = -1; dy <= 1; ++dy)
-          for (std::int64_t dz = -1; dz <= 1; ++dz) {
-            const Cell n{c[0] + dx, c[1] + dy, c[2] + dz};
-            for (auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(n, Index{-1})); it != cells.end() && it->first == n; ++it) {
-              const Index q = it->second;
-              if (q > p && one_point(uv[static_cast<size_t>(p)], uv[static_cast<size_t>(q)], xyz[static_cast<size_t>(p)], xyz[static_cast<size_t>(q)]))
-                join(p, q);
-            }
-          }
+    if (fixed < 2) return;
+    Vec3 lo = xyz[0], hi = xyz[0];
+    for (Index v = 1; v < fixed; ++v) lo = lo.cwiseMin(xyz[static_cast<size_t>(v)]), hi = hi.cwiseMax(xyz[static_cast<size_t>(v)]);
+    const double unit = kQuantum * (hi - lo).norm();
+    if (!(unit > 0)) return;
+    using Key = std::array<std::int64_t, 3>;
+    std::vector<std::pair<Key, Index>> keys(static_cast<size_t>(fixed));
+    for (Index v = 0; v < fixed; ++v) {
+      Key k;
+      for (int c = 0; c < 3; ++c) k[static_cast<size_t>(c)] = std::llround((xyz[static_cast<size_t>(v)][c] - lo[c]) / unit);
+      keys[static_cast<size_t>(v)] = {k, v};
     }
+    std::sort(keys.begin(), keys.end());
+    for (size_t i = 0; i < keys.size(); ++i)
+      for (size_t j = i + 1; j < keys.size() && (j <= i + 2 || keys[j].first == keys[i].first); ++j) {
+        const Index p = keys[i].second, q = keys[j].second;
+        if (one_point(uv[static_cast<size_t>(p)], uv[static_cast<size_t>(q)], xyz[static_cast<size_t>(p)], xyz[static_cast<size_t>(q)])) join(p, q);
+      }
   }
   bool any() const { return any_; }
   // The point node v is a copy of (one of its copies' index), -1 for none.
