@@ -117,6 +117,52 @@ void split_spanning_edges(Triangulation& tr, const std::vector<Vec3>& xyz, Index
   }
 }
 
+// A cone's apex narrower than this in the domain (radians) gets nodes of its own across its wedge.
+constexpr double kNarrowApex = kPi / 3;
+// Up to where the wedge between the seam's two sides is this many seam segments wide.
+constexpr double kWedgeSegments = 3;
+
+// Nodes across the wedge at a narrow cone apex: the loop comes to a node A between two nodes at one
+// 3D point (the seam's two sides, copies of one point, smoothing.hpp), and the seam's nodes pair up
+// along both sides. A node joined to both copies of a seam node is one edge twice once the face's
+// mesh is welded, and the mesher joins them wherever the wedge is narrower than its elements: each
+// pair of copies whose chord is under kWedgeSegments seam segments gets two nodes at a third and two
+// thirds of the chord, so that three edges go round the cone there. They are added to `pts` and
+// `xyz` as nodes that never move; splitting edges later cannot make them (a node on a split edge is
+// joined to both copies again), and refinement keeps away from segments that close.
+void apex_wedge_nodes(const std::vector<LoopNodes>& loops, const SurfaceMap& map, std::vector<P2>& pts, std::vector<Vec3>& xyz) {
+  auto copies = [](const LoopNodes& l, size_t a, size_t b) {
+    return (l.xyz[a] - l.xyz[b]).squaredNorm() <= kSamePoint * kSamePoint * (l.uv[a] - l.uv[b]).squaredNorm();
+  };
+  for (const LoopNodes& l : loops) {
+    const size_t n = l.uv.size();
+    if (n < 5) continue;
+    for (size_t k = 0; k < n; ++k) {
+      size_t prev = (k + n - 1) % n, next = (k + 1) % n;
+      if (!copies(l, prev, next)) continue;
+      const P2 apex = l.uv[k];
+      const double reach = std::min((l.uv[prev] - apex).norm(), (l.uv[next] - apex).norm());
+      if (!((l.uv[prev] - l.uv[next]).norm() < 2 * std::sin(kNarrowApex / 2) * reach)) continue;
+      size_t before = k, after = k;  // the last pair's nodes on each side
+      for (size_t ring = 0; ring < n / 2 && prev != next && copies(l, prev, next); ++ring) {
+        const double segment = std::max((l.uv[prev] - l.uv[before]).norm(), (l.uv[next] - l.uv[after]).norm());
+        const P2 chord = l.uv[prev] - l.uv[next];
+        // A seam kept closed (a scar) has its copies at one UV point too: no wedge there.
+        if (!(chord.norm() < kWedgeSegments * segment) || !(chord.norm() > kWedgeSegments * kSameNode * segment)) break;
+        for (const double t : {1.0 / 3, 2.0 / 3}) {
+          const P2 p = l.uv[next] + t * chord;
+          Vec3 x;
+          if (!map.lift(p, x)) continue;
+          pts.push_back(p);
+          xyz.push_back(x);
+        }
+        before = prev, after = next;
+        prev = (prev + n - 1) % n, next = (next + 1) % n;
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const MeshOptions& o, double expected_elements,
@@ -125,6 +171,7 @@ void free_mesh(const std::vector<LoopNodes>& loops, const SurfaceMap& map, const
   std::vector<P2> pts;
   std::vector<std::array<Index, 2>> segs;
   boundary_nodes(loops, pts, out.xyz, segs);
+  apex_wedge_nodes(loops, map, pts, out.xyz);
   out.boundary_nodes = static_cast<Index>(pts.size());
   out.hard_edges = scar_segments(segs);
   Triangulation tr(pts, segs);
