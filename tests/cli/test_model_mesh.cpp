@@ -1,7 +1,8 @@
 // ModelMesh (apps/wefm/model_mesh.hpp), the welded whole-model mesh, as a unit: the two halves of
 // a quad are split along its better diagonal, so a quad with a corner near 180 degrees is not
 // reported as a zero-area triangle, while a triangle mesh's own sliver still is; a fin closing a
-// model vertex's corner goes with the vertex, and the chord it leaves is checked.
+// model vertex's corner goes with the vertex, and the chord it leaves is checked; a model-edge
+// segment no triangle uses names the faces at its ends.
 #include <doctest/doctest.h>
 
 #include <vector>
@@ -72,4 +73,20 @@ TEST_CASE("with the fin dropped, a chord that only one triangle uses is still a 
   for (const auto* edge : {&kVA, &kVB}) mesh.expect_model_edge(*edge, 2);
   mesh.expect_model_edge(kAXB, 1);
   CHECK(mesh.conformity().unexplained_open_edges == 1);
+}
+
+TEST_CASE("a model-edge segment no triangle uses is a gap, and the faces at its ends are named") {
+  // A square split along a-c; a model edge said to run b-d, the other diagonal, which no triangle has
+  // (a face that lost its side of an edge, as a cone's apex lost by welding).
+  ModelMesh mesh(1e-9);
+  const std::vector<double> square = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};  // a, b, c, d
+  mesh.add_face(7, square, {0, 1, 2, 0, 2, 3});
+  for (int k = 0; k < 4; ++k)  // its sides are free edges
+    mesh.expect_model_edge({square[3 * k], square[3 * k + 1], 0, square[3 * ((k + 1) % 4)], square[3 * ((k + 1) % 4) + 1], 0}, 1);
+  mesh.expect_model_edge({1, 0, 0, 0, 1, 0}, 2);
+  const auto c = mesh.conformity();
+  CHECK(c.unexplained_open_edges == 1);
+  REQUIRE(c.defect_edges.size() == 1);
+  CHECK(c.defect_edges[0].uses == 0);
+  CHECK(c.defect_faces == std::vector<int>{7});
 }
