@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 #include <unordered_set>
 
 #include "wefm/core/sys/clock.hpp"
@@ -131,12 +132,11 @@ constexpr double kWedgeSegments = 3;
 // `xyz` as nodes that never move; splitting edges later cannot make them (a node on a split edge is
 // joined to both copies again), and refinement keeps away from segments that close.
 void apex_wedge_nodes(const std::vector<LoopNodes>& loops, const SurfaceMap& map, std::vector<P2>& pts, std::vector<Vec3>& xyz) {
-  auto copies = [](const LoopNodes& l, size_t a, size_t b) {
-    return (l.xyz[a] - l.xyz[b]).squaredNorm() <= kSamePoint * kSamePoint * (l.uv[a] - l.uv[b]).squaredNorm();
-  };
+  auto copies = [](const LoopNodes& l, size_t a, size_t b) { return one_point(l.uv[a], l.uv[b], l.xyz[a], l.xyz[b]); };
   for (const LoopNodes& l : loops) {
     const size_t n = l.uv.size();
     if (n < 5) continue;
+    std::set<std::pair<size_t, size_t>> done;  // pairs given nodes: a spindle's two apexes walk one seam
     for (size_t k = 0; k < n; ++k) {
       size_t prev = (k + n - 1) % n, next = (k + 1) % n;
       if (!copies(l, prev, next)) continue;
@@ -149,6 +149,7 @@ void apex_wedge_nodes(const std::vector<LoopNodes>& loops, const SurfaceMap& map
         const P2 chord = l.uv[prev] - l.uv[next];
         // A seam kept closed (a scar) has its copies at one UV point too: no wedge there.
         if (!(chord.norm() < kWedgeSegments * segment) || !(chord.norm() > kWedgeSegments * kSameNode * segment)) break;
+        if (!done.insert(std::minmax(prev, next)).second) break;
         for (const double t : {1.0 / 3, 2.0 / 3}) {
           const P2 p = l.uv[next] + t * chord;
           Vec3 x;

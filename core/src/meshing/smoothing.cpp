@@ -10,15 +10,6 @@
 
 namespace wefm::meshing {
 
-namespace {
-
-// Whether nodes at UV ua, ub and 3D a, b are copies of one point (kSamePoint).
-bool one_point(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b) {
-  return (b - a).squaredNorm() <= kSamePoint * kSamePoint * (ua - ub).squaredNorm();
-}
-
-}  // namespace
-
 bool spans_face(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b, const SurfaceMap& map, const SpanRule& rule, Vec3* middle) {
   const Vec3 e = b - a;
   // The two copies of a seam's end beside a cone's apex or a pole are one point in 3D: an edge

@@ -30,6 +30,11 @@ constexpr double kChordSag = 0.1;
 // (the two sides of a seam at a cone's apex or a pole): the domain keeps lengths near their 3D ones.
 constexpr double kSamePoint = 1e-4;
 
+// Whether nodes at UV ua, ub and 3D a, b are copies of one point (kSamePoint).
+inline bool one_point(const P2& ua, const P2& ub, const Vec3& a, const Vec3& b) {
+  return (b - a).squaredNorm() <= kSamePoint * kSamePoint * (ua - ub).squaredNorm();
+}
+
 // Which edges between two boundary nodes span the face: from `shortest` long, with the surface at
 // their UV middle farther than `sag` of their length from their line.
 struct SpanRule {
