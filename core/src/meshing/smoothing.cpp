@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "wefm/core/mesh/union_find.hpp"
 #include "wefm/core/meshing/mesh_quality.hpp"
 #include "wefm/core/meshing/node_optimisation.hpp"
 #include "wefm/core/meshing/node_triangles.hpp"
@@ -93,11 +94,18 @@ class SeamCopies {
       keys[static_cast<size_t>(v)] = {k, v};
     }
     std::sort(keys.begin(), keys.end());
+    UnionFind sets(fixed);
     for (size_t i = 0; i < keys.size(); ++i)
       for (size_t j = i + 1; j < keys.size() && (j <= i + 2 || keys[j].first == keys[i].first); ++j) {
         const Index p = keys[i].second, q = keys[j].second;
-        if (one_point(uv[static_cast<size_t>(p)], uv[static_cast<size_t>(q)], xyz[static_cast<size_t>(p)], xyz[static_cast<size_t>(q)])) join(p, q);
+        if (one_point(uv[static_cast<size_t>(p)], uv[static_cast<size_t>(q)], xyz[static_cast<size_t>(p)], xyz[static_cast<size_t>(q)])) {
+          sets.unite(p, q);
+          point_[static_cast<size_t>(p)] = point_[static_cast<size_t>(q)] = 0;  // has a copy; labelled below
+          any_ = true;
+        }
       }
+    for (Index v = 0; v < fixed; ++v)
+      if (point_[static_cast<size_t>(v)] >= 0) point_[static_cast<size_t>(v)] = sets.find(v);
   }
   bool any() const { return any_; }
   // The point node v is a copy of (one of its copies' index), -1 for none.
@@ -106,24 +114,6 @@ class SeamCopies {
   bool same(Index p, Index q) const { return p == q || (point(p) >= 0 && point(p) == point(q)); }
 
  private:
-  // Puts p and q on one point.
-  void join(Index p, Index q) {
-    Index& lp = point_[static_cast<size_t>(p)];
-    Index& lq = point_[static_cast<size_t>(q)];
-    if (lp < 0 && lq < 0) {
-      lp = lq = std::min(p, q);
-    } else if (lp < 0) {
-      lp = lq;
-    } else if (lq < 0) {
-      lq = lp;
-    } else if (lp != lq) {  // two points found to be one only through a third copy: rare, relabelled in full
-      const Index from = std::max(lp, lq), to = std::min(lp, lq);
-      for (Index& x : point_)
-        if (x == from) x = to;
-    }
-    any_ = true;
-  }
-
   std::vector<Index> point_;
   bool any_ = false;
 };
