@@ -415,6 +415,38 @@ class Importer {
     return false;
   }
 
+  // BRepMesh can mesh the tip of a face next to a pole, where the face is narrower than the
+  // deflection (a B-spline ellipsoid 20 times longer than wide), with facets that each span the whole
+  // period between the seam's two sides. The seam merge collapses them all; the facets left close the
+  // surface just below the tip, and the pole and the seam's last nodes are in no facet. Those nodes
+  // are merged into the seam's last node that has facets, which goes to the pole's point: the
+  // surface keeps its length, and the tip, a few deflections long, is one cone of facets.
+  void close_lost_tips(UnionFind& uf, std::vector<std::array<int, 3>>& facets) {
+    std::set<int> used, poles;
+    for (const std::array<int, 3>& f : facets) used.insert(f.begin(), f.end());
+    for (size_t k = 0; k < out_.edges.size(); ++k)
+      if (out_.edges[k].degenerated) poles.insert(uf.find(raw_chains_[k].front()));
+    bool merged = false;
+    for (size_t k = 0; k < out_.edges.size(); ++k) {
+      if (!out_.edges[k].seam) continue;
+      std::vector<int> chain = raw_chains_[k];
+      for (int end = 0; end < 2; ++end, std::reverse(chain.begin(), chain.end())) {
+        const int pole = uf.find(chain.front());
+        if (!poles.count(pole) || used.count(pole)) continue;
+        size_t j = 0;
+        while (j < chain.size() && !used.count(uf.find(chain[j]))) ++j;
+        if (j == chain.size()) continue;  // no facet on the whole seam: left for the topology check
+        const gp_Pnt tip = points_[static_cast<size_t>(pole)];
+        for (size_t i = 0; i < j; ++i) uf.unite(chain[i], chain[j]);
+        points_[static_cast<size_t>(uf.find(chain[j]))] = tip;
+        merged = true;
+      }
+    }
+    if (merged)
+      for (std::array<int, 3>& f : facets)
+        for (int& node : f) node = uf.find(node);
+  }
+
   void build_mesh(UnionFind& uf) {
     std::vector<int32_t> index(points_.size(), -1);
     auto vertex_of = [&](int node) {
@@ -427,7 +459,9 @@ class Importer {
       }
       return v;
     };
-    for (const std::array<int, 3>& f : merged_facets(uf))
+    std::vector<std::array<int, 3>> facets = merged_facets(uf);
+    close_lost_tips(uf, facets);
+    for (const std::array<int, 3>& f : facets)
       for (int node : f) out_.triangles.push_back(vertex_of(node));
     drop_slivers_on_overused_edges();
     if (out_.triangles.empty()) {
