@@ -38,7 +38,9 @@ constexpr double kCoincident = 1e-6;
 // Edge segments shrink towards a pinch of a face (a place narrower than kPinchFraction of the
 // face's width, 2 area / perimeter, as where a twisted blend's two sides nearly meet) down to
 // h / kNarrowestEdgeFraction: a pinch costs a few dozen segments, as they grow back by g per unit
-// length. Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
+// length, and so does a narrow arm of the face up to kPinchSegments long (nodeocc_kuka's plates
+// have arms 0.03 to 0.09 wide and 26 long: at h / 32 their min Lo lambda was 0.013, up to 200
+// segments 0.094, its triangles +1.4 %). Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
 // at all: shorter chords there only narrow the corner's triangles, as they turn towards the edges'
 // common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40);
 // the cusp's fan (fan_from_start) places the nodes next to it instead.
@@ -50,7 +52,7 @@ constexpr double kNarrowestEdgeFraction = 300;
 constexpr double kNarrowestCornerFraction = 32;
 constexpr double kCuspReach = 0.5;
 constexpr double kPinchFraction = 0.25;
-constexpr double kPinchSegments = 50;
+constexpr double kPinchSegments = 200;
 constexpr double kNeedleRatio = 30;
 // A face at least this many times its smaller radius of curvature wide (2 area / perimeter) wraps
 // round it: a tube of radius r is about 2 pi r wide, a long half tube pi r, a quarter-round fillet
@@ -569,7 +571,7 @@ struct Across {
 // Whether face f, `wide` wide (2 area / perimeter), is pinched: somewhere away from a cusp narrower
 // than kPinchFraction of that, and only over short stretches. Along every edge, each run of samples that
 // narrow would take at most kPinchSegments segments at kWidthFactor times its width (down to
-// `floor`): a long narrow arm of a face would take hundreds. A face under h / kNeedleRatio wide is
+// `floor`): a longer arm would refine its narrow neighbours as well, many times over. A face under h / kNeedleRatio wide is
 // narrow all along, not pinched.
 bool pinched(double wide, double h, double floor, const std::vector<Across>& across, const std::map<long long, SizeProfile>& profiles) {
   const double pinch = kPinchFraction * wide;

@@ -567,6 +567,33 @@ TEST_CASE("edge segments shrink at every pinch along an edge, not only the first
   }
 }
 
+// The strip narrowed to 0.05 across (its sides at one height, y = 0 and 0.05) over 15 of its length,
+// from x = 40 to 55: a narrow arm of the face rather than a point where it pinches.
+CadFace narrow_arm_strip() {
+  return strip({0, 10, 20, 30, 38, 40, 55, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + ramp(x, 38, 40) - ramp(x, 55, 57); },
+               [](double x) { return 1 - ramp(x, 38, 40) + ramp(x, 55, 57); });
+}
+
+TEST_CASE("edge segments shrink to the width along a narrow arm of a face up to 200 segments long") {
+  const wefm_cad::CadModel m = strip_model(narrow_arm_strip(), "hand-made strip with a narrow arm");
+  const double h = 10;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    const std::vector<double>& p = nodes.at(side).xyz;
+    double longest = 0;
+    for (size_t k = 0; k + 5 < p.size(); k += 3)
+      if (std::min(p[k], p[k + 3]) > 41 && std::max(p[k], p[k + 3]) < 54)
+        longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    // About 2.5 times the 0.05 across (some 120 segments along the arm), where the floor away from
+    // pinches (h / 32 = 0.31, once the floor on any run over 50 segments) leaves Lo lambda under 0.1.
+    CHECK(longest > 0.05);
+    CHECK(longest < 0.2);
+    // The arm's segments and the grading back to h on either side, not thousands.
+    CHECK(p.size() / 3 < 400);
+  }
+}
+
 TEST_CASE("the two edges of a cusp get the same first segment, then a fan growing with the width across") {
   // A triangle with a 5 degree corner at the origin, sides 100 along x and to (100, 100 tan 5), at
   // h = 10. The corner is a cusp: its first segment (no triangle there can reach Lo lambda 0.3) is
