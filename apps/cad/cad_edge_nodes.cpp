@@ -37,7 +37,7 @@ constexpr double kWidthFactor = 2.5;
 constexpr double kCoincident = 1e-6;
 // Edge segments shrink towards a pinch of a face (a place narrower than kPinchFraction of the
 // face's width, 2 area / perimeter, as where a twisted blend's two sides nearly meet) down to
-// h / kNarrowestEdgeFraction: a pinch costs a few dozen segments, as they grow back by g per unit
+// h / kPinchFloorFraction: a pinch costs a few dozen segments, as they grow back by g per unit
 // length, and so does a narrow arm of the face up to kPinchSegments long (nodeocc_kuka's plates
 // have arms 0.03 to 0.09 wide and 26 long: at h / 32 their min Lo lambda was 0.013, up to 200
 // segments 0.094, its triangles +1.4 %). Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
@@ -49,6 +49,9 @@ constexpr double kCoincident = 1e-6;
 //   goes down to its needle floor (needle_floor) instead;
 // - a face only somewhat narrower in places is graded by its width well enough.
 constexpr double kNarrowestEdgeFraction = 300;
+// Where two edges touch tangentially (gmsh_Solid_56's face 31) the width goes to 0; at h / 300 the
+// triangles there had Lo lambda 0.276, at h / 1000 0.315, for 1 % more triangles on that model.
+constexpr double kPinchFloorFraction = 1000;
 constexpr double kNarrowestCornerFraction = 32;
 constexpr double kCuspReach = 0.5;
 constexpr double kPinchFraction = 0.25;
@@ -596,11 +599,11 @@ bool pinched(double wide, double h, double floor, const std::vector<Across>& acr
 }
 
 // Lowers the sizes along the edges where a face is narrower than them, to kWidthFactor times its
-// width: down to h / kNarrowestEdgeFraction on a pinched face, else to h / kNarrowestCornerFraction;
+// width: down to h / kPinchFloorFraction on a pinched face, else to h / kNarrowestCornerFraction;
 // not at all beside a cusp. Decided per face: a floor that changed from sample to sample would make
 // the sizes along its edges rise and fall.
 void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>& cusps, std::map<long long, SizeProfile>& profiles) {
-  const double floor = h / kNarrowestEdgeFraction, segments = needle_segments(model, h);
+  const double floor = h / kPinchFloorFraction, segments = needle_segments(model, h);
   std::vector<Across> across;
   for (const CadFace& f : model.faces) {
     if (!f.error.empty()) continue;

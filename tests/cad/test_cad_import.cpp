@@ -451,9 +451,10 @@ TEST_CASE("edge segments shrink along a tongue between two parallel edges, where
   CHECK(longest < 1.2);
 }
 
-// A strip 100 long and 2 wide (z = -1 to 1 between its long sides A: y = 0 and B: y = 0.05), its
+// A strip 100 long and 2 wide (z = -1 to 1 between its long sides A: y = 0 and B: y = `across`), its
 // chain vertices at `xs`, side A at height za(x) and side B at zb(x), 4 rows of facets between.
-CadFace strip(const std::vector<double>& xs, const std::function<double(double)>& za, const std::function<double(double)>& zb) {
+CadFace strip(const std::vector<double>& xs, const std::function<double(double)>& za, const std::function<double(double)>& zb,
+              double across = 0.05) {
   constexpr int kRows = 4;
   CadFace f;
   f.index = 1;
@@ -463,7 +464,7 @@ CadFace strip(const std::vector<double>& xs, const std::function<double(double)>
   for (double x : xs)
     for (int r = 0; r <= kRows; ++r) {
       const double v = static_cast<double>(r) / kRows;
-      f.xyz.insert(f.xyz.end(), {x, 0.05 * v, za(x) + v * (zb(x) - za(x))});
+      f.xyz.insert(f.xyz.end(), {x, across * v, za(x) + v * (zb(x) - za(x))});
     }
   for (int32_t i = 0; i + 1 < columns; ++i)
     for (int32_t r = 0; r < kRows; ++r)
@@ -533,6 +534,27 @@ TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also be
   for (long long side : {1LL, 3LL}) {
     CAPTURE(side);
     CHECK(shortest(beside_cusp, side) > 1.5);
+  }
+}
+
+TEST_CASE("at a pinch where the sides pass 0.01 apart, edge segments shrink below h / 300") {
+  // pinched_strip with its sides 0.01 apart in y. Where two edges touch tangentially the width goes
+  // to 0: at h / 300 (0.033 here) gmsh_Solid_56's face 31 kept Lo lambda 0.276 there.
+  const wefm_cad::CadModel m = strip_model(
+      strip({0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + 2 * ramp(x, 44, 57); },
+            [](double x) { return 1 - 2 * ramp(x, 42, 57); }, 0.01),
+      "hand-made twisted strip, 0.01 across");
+  const double h = 10;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    const std::vector<double>& p = nodes.at(side).xyz;
+    double s = 1e300;
+    for (size_t k = 0; k + 5 < p.size(); k += 3) s = std::min(s, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    // About 2.5 times the 0.01 across, above the floor of h / 1000.
+    CHECK(s < 0.03);
+    CHECK(s >= 0.01 - 1e-12);
+    CHECK(p.size() / 3 < 300);
   }
 }
 
