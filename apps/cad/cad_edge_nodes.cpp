@@ -38,9 +38,10 @@ constexpr double kCoincident = 1e-6;
 // Edge segments shrink towards a pinch of a face (a place narrower than kPinchFraction of the
 // face's width, 2 area / perimeter, as where a twisted blend's two sides nearly meet) down to
 // h / kPinchFloorFraction: a pinch costs a few dozen segments, as they grow back by g per unit
-// length, and so does a narrow arm of the face up to kPinchSegments long (nodeocc_kuka's plates
-// have arms 0.03 to 0.09 wide and 26 long: at h / 32 their min Lo lambda was 0.013, up to 200
-// segments 0.094, its triangles +1.4 %). Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
+// length, and so does a narrow arm of the face up to kPinchSegments long; a longer arm gets
+// kPinchSegments, as short as that makes them (narrow_floor). nodeocc_kuka's plates have arms 0.03
+// to 0.09 wide and up to 100 long: at h / 32 their min Lo lambda was 0.013 to 0.06, now 0.12 and
+// up, for 9 % more triangles. Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
 // at all: shorter chords there only narrow the corner's triangles, as they turn towards the edges'
 // common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40);
 // the cusp's fan (fan_from_start) places the nodes next to it instead.
@@ -571,31 +572,48 @@ struct Across {
   bool near_cusp;
 };
 
-// Whether face f, `wide` wide (2 area / perimeter), is pinched: somewhere away from a cusp narrower
-// than kPinchFraction of that, and only over short stretches. Along every edge, each run of samples that
-// narrow would take at most kPinchSegments segments at kWidthFactor times its width (down to
-// `floor`): a longer arm would refine its narrow neighbours as well, many times over. A face under h / kNeedleRatio wide is
-// narrow all along, not pinched.
-bool pinched(double wide, double h, double floor, const std::vector<Across>& across, const std::map<long long, SizeProfile>& profiles) {
+// The floor of the sizes along face f's narrow parts, `wide` being its width (2 area / perimeter):
+// `floor` where it is pinched, somewhere away from a cusp narrower than kPinchFraction of that, and
+// only over short stretches: along every edge, each run of samples that narrow takes at most
+// kPinchSegments segments at kWidthFactor times its width, down to the floor. Where a run is
+// longer (a narrow arm of a plate), the lowest floor at which it takes kPinchSegments: a floor that
+// keeps it to a bounded count refines its narrow neighbours no more than a pinch does, and leaves
+// triangles across it better than `ceiling`. `ceiling` where the face has no such run, or is under
+// h / kNeedleRatio wide (narrow all along, sized as a needle).
+double narrow_floor(double wide, double h, double floor, double ceiling, const std::vector<Across>& across,
+                    const std::map<long long, SizeProfile>& profiles) {
   const double pinch = kPinchFraction * wide;
-  if (!(wide >= h / kNeedleRatio)) return false;
+  if (!(wide >= h / kNeedleRatio) || !(floor < ceiling)) return ceiling;
   std::map<long long, std::vector<std::pair<size_t, double>>> narrow;
   for (const Across& x : across)
     if (!x.near_cusp && x.width < pinch) narrow[x.id].emplace_back(x.k, x.width);
-  for (auto& [id, ks] : narrow) {
-    std::sort(ks.begin(), ks.end());
-    const std::vector<double>& arc = profiles.at(id).s;
-    double segments = 0;
-    for (size_t i = 1; i < ks.size(); ++i) {
-      if (ks[i].first > ks[i - 1].first + 1) {
-        segments = 0;
-        continue;
+  if (narrow.empty()) return ceiling;
+  for (auto& [id, ks] : narrow) std::sort(ks.begin(), ks.end());
+  // The segments of the longest run at floor f.
+  auto longest_run = [&](double f) {
+    double most = 0;
+    for (const auto& [id, ks] : narrow) {
+      const std::vector<double>& arc = profiles.at(id).s;
+      double segments = 0;
+      for (size_t i = 1; i < ks.size(); ++i) {
+        if (ks[i].first > ks[i - 1].first + 1) {
+          segments = 0;
+          continue;
+        }
+        segments += (arc[ks[i].first] - arc[ks[i - 1].first]) / std::max(f, kWidthFactor * 0.5 * (ks[i].second + ks[i - 1].second));
+        most = std::max(most, segments);
       }
-      segments += (arc[ks[i].first] - arc[ks[i - 1].first]) / std::max(floor, kWidthFactor * 0.5 * (ks[i].second + ks[i - 1].second));
-      if (segments > kPinchSegments) return false;
     }
+    return most;
+  };
+  if (longest_run(floor) <= kPinchSegments) return floor;
+  if (longest_run(ceiling) > kPinchSegments) return ceiling;
+  double lo = floor, hi = ceiling;  // too many segments at lo, few enough at hi
+  for (int i = 0; i < 40; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (longest_run(mid) > kPinchSegments ? lo : hi) = mid;
   }
-  return !narrow.empty();
+  return hi;
 }
 
 // Lowers the sizes along the edges where a face is narrower than them, to kWidthFactor times its
@@ -615,11 +633,11 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>
       for (const Cusp& c : cusps) near_cusp = near_cusp || distance(p.data(), c.point.data()) < kCuspReach * h;
       across.push_back({id, k, width, near_cusp});
     }, profiles);
-    const bool pinch = pinched(wide, h, floor, across, profiles);
+    const double narrowest = narrow_floor(wide, h, floor, corner_floor, across, profiles);
     for (const Across& x : across) {
       if (x.near_cusp) continue;
       double& v = profiles.at(x.id).v[x.k];
-      v = std::min(v, std::max(pinch ? floor : corner_floor, kWidthFactor * x.width));
+      v = std::min(v, std::max(narrowest, kWidthFactor * x.width));
     }
   }
 }

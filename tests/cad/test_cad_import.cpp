@@ -616,6 +616,28 @@ TEST_CASE("edge segments shrink to the width along a narrow arm of a face up to 
   }
 }
 
+TEST_CASE("along a longer narrow arm, edge segments shrink as far as 200 segments over its length allow") {
+  // The strip narrowed to 0.05 across from x = 20 to 80: at 2.5 times the width, 480 segments.
+  const wefm_cad::CadModel m = strip_model(
+      strip({0, 10, 18, 20, 30, 40, 50, 60, 70, 80, 82, 90, 100}, [](double x) { return -1 + ramp(x, 18, 20) - ramp(x, 80, 82); },
+            [](double x) { return 1 - ramp(x, 18, 20) + ramp(x, 80, 82); }),
+      "hand-made strip with a long narrow arm");
+  const double h = 20;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    const std::vector<double>& p = nodes.at(side).xyz;
+    double longest = 0;
+    for (size_t k = 0; k + 5 < p.size(); k += 3)
+      if (std::min(p[k], p[k + 3]) > 25 && std::max(p[k], p[k + 3]) < 75)
+        longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    // About 60 / 200: not h / 32 (0.625, the floor on such an arm before), not 2.5 times the width.
+    CHECK(longest > 0.2);
+    CHECK(longest < 0.4);
+    CHECK(p.size() / 3 < 400);
+  }
+}
+
 TEST_CASE("the two edges of a cusp get the same first segment, then a fan growing with the width across") {
   // A triangle with a 5 degree corner at the origin, sides 100 along x and to (100, 100 tan 5), at
   // h = 10. The corner is a cusp: its first segment (no triangle there can reach Lo lambda 0.3) is
