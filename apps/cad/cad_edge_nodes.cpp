@@ -55,6 +55,12 @@ constexpr double kNarrowestEdgeFraction = 300;
 constexpr double kPinchFloorFraction = 1000;
 constexpr double kNarrowestCornerFraction = 32;
 constexpr double kCuspReach = 0.5;
+// Beside a cusp, a place narrower than this share of the wedge's width at its distance from the tip
+// (d sin of the corner) is not the wedge but a strip past it (a plate's arm whose end is sharp): it is
+// sized by its width. nodeocc_kuka's face 418 at 1/20 (an arm 0.03 wide, 26 long) had segments of 5
+// to 10 and Lo lambda 0.009; at this share 0.048, with no other cad-more model's min lambda changed at
+// 1/20, 1/40 or 1/100. At 0.2 or 0.5 pyocc_Ventilator's corner triangles fell from 0.231 to 0.132.
+constexpr double kWedgeShare = 0.05;
 constexpr double kPinchFraction = 0.25;
 constexpr double kPinchSegments = 200;
 constexpr double kNeedleRatio = 30;
@@ -630,7 +636,10 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>
     across.clear();
     lower_by_width(f, h / kWidthFactor, kCoincident * model.bbox_diagonal, [&](long long id, size_t k, double width, const std::array<double, 3>& p) {
       bool near_cusp = false;
-      for (const Cusp& c : cusps) near_cusp = near_cusp || distance(p.data(), c.point.data()) < kCuspReach * h;
+      for (const Cusp& c : cusps) {
+        const double d = distance(p.data(), c.point.data());
+        near_cusp = near_cusp || (d < kCuspReach * h && width >= kWedgeShare * d * std::sin(c.degrees * 3.14159265358979 / 180));
+      }
       across.push_back({id, k, width, near_cusp});
     }, profiles);
     const double narrowest = narrow_floor(wide, h, floor, corner_floor, across, profiles);

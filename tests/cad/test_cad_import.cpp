@@ -616,6 +616,33 @@ TEST_CASE("edge segments shrink to the width along a narrow arm of a face up to 
   }
 }
 
+TEST_CASE("beside a cusp, a narrow arm far narrower than the cusp's wedge is still sized by its width") {
+  // narrow_arm_strip 0.01 across, and a 9-degree cusp at the arm's end (x = 55): within h / 2 of a cusp
+  // the width rule leaves the edges to the cusp's fan, which grows as the wedge widens; the arm does
+  // not widen (nodeocc_kuka's plate 418 at 1/20: segments of 5 to 10 along an arm 0.03 wide).
+  const wefm_cad::CadModel m = strip_model(
+      strip({0, 10, 20, 30, 38, 40, 55, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + ramp(x, 38, 40) - ramp(x, 55, 57); },
+            [](double x) { return 1 - ramp(x, 38, 40) + ramp(x, 55, 57); }, 0.01),
+      "hand-made strip with a narrow arm beside a cusp");
+  const double h = 10;
+  wefm_cad::Cusp cusp;
+  cusp.point = {55.0, 0.0, 0.0};
+  cusp.degrees = 9;
+  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3, {cusp});
+  for (long long side : {1LL, 3LL}) {
+    CAPTURE(side);
+    const std::vector<double>& p = nodes.at(side).xyz;
+    double longest = 0;
+    for (size_t k = 0; k + 5 < p.size(); k += 3)
+      if (std::min(p[k], p[k + 3]) > 50 && std::max(p[k], p[k + 3]) < 52.3)
+        longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    // The arm's segments (200 over its 15 at most) up to the last size sample (h / 4 apart) that is
+    // within the cusp's wedge, not segments growing from 2.5 back beside it.
+    CHECK(longest > 0);
+    CHECK(longest < 0.1);
+  }
+}
+
 TEST_CASE("along a longer narrow arm, edge segments shrink as far as 200 segments over its length allow") {
   // The strip narrowed to 0.05 across from x = 20 to 80: at 2.5 times the width, 480 segments.
   const wefm_cad::CadModel m = strip_model(
