@@ -41,10 +41,11 @@ constexpr double kCoincident = 1e-6;
 // length, and so does a narrow arm of the face up to kPinchSegments long; a longer arm gets
 // kPinchSegments, as short as that makes them (narrow_floor). nodeocc_kuka's plates have arms 0.03
 // to 0.09 wide and up to 100 long: at h / 32 their min Lo lambda was 0.013 to 0.06, now 0.12 and
-// up, for 9 % more triangles. Within kCuspReach h of a corner under 10 degrees (a cusp) they do not shrink by the width
-// at all: shorter chords there only narrow the corner's triangles, as they turn towards the edges'
-// common tangent (gmsh_917_fusee's min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40);
-// the cusp's fan (fan_from_start) places the nodes next to it instead.
+// up, for 9 % more triangles. Within kCuspReach h of a corner under 10 degrees (a cusp) they do not
+// shrink by the width where the face is the corner's wedge (kWedgeShare): shorter chords there only
+// narrow the corner's triangles, as they turn towards the edges' common tangent (gmsh_917_fusee's
+// min Lo lambda 0.146 with h / 32 there, 0.404 without, at 1/40); the cusp's fan (fan_from_start)
+// places the nodes next to it instead.
 // Elsewhere only down to h / kNarrowestCornerFraction:
 // - a face narrow all along (under h / kNeedleRatio wide: one narrow-face merging could not take)
 //   goes down to its needle floor (needle_floor) instead;
@@ -70,7 +71,8 @@ constexpr double kNeedleRatio = 30;
 constexpr double kWrapWidth = 2;
 // A face whose facet normals all lie within this angle of their mean turns less than about 120
 // degrees (a quarter-round fillet along a line turns 90).
-constexpr double kLittleTurn = 60 * 3.14159265358979 / 180;
+constexpr double kDegree = 3.14159265358979 / 180;
+constexpr double kLittleTurn = 60 * kDegree;
 // The smallest a curved face gets: a hole or tube of radius down to h / 8 keeps six segments around.
 constexpr double kSmallestRadiusFraction = 8;
 // The fewest elements round a short face that wraps round its seam, below the floor above: with three
@@ -623,8 +625,8 @@ double narrow_floor(double wide, double h, double floor, double ceiling, const s
 }
 
 // Lowers the sizes along the edges where a face is narrower than them, to kWidthFactor times its
-// width: down to h / kPinchFloorFraction on a pinched face, else to h / kNarrowestCornerFraction;
-// not at all beside a cusp. Decided per face: a floor that changed from sample to sample would make
+// width: down to narrow_floor's floor (h / kPinchFloorFraction on a pinched face, at most
+// h / kNarrowestCornerFraction); not at all in a cusp's wedge. Decided per face: a floor that changed from sample to sample would make
 // the sizes along its edges rise and fall.
 void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>& cusps, std::map<long long, SizeProfile>& profiles) {
   const double floor = h / kPinchFloorFraction, segments = needle_segments(model, h);
@@ -638,7 +640,7 @@ void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>
       bool near_cusp = false;
       for (const Cusp& c : cusps) {
         const double d = distance(p.data(), c.point.data());
-        near_cusp = near_cusp || (d < kCuspReach * h && width >= kWedgeShare * d * std::sin(c.degrees * 3.14159265358979 / 180));
+        near_cusp = near_cusp || (d < kCuspReach * h && width >= kWedgeShare * d * std::sin(c.degrees * kDegree));
       }
       across.push_back({id, k, width, near_cusp});
     }, profiles);
@@ -680,7 +682,7 @@ double cusp_degrees(const std::vector<Cusp>& cusps, const double* p, double tol)
 // kicad_Inductor 0.380 -> 0.216 at 1/40).
 void fan_from_start(std::vector<double>& t, double first, bool continued, double degrees, double reach) {
   const double length = t.back(), offset = continued ? first : 0;
-  const double grow = std::max(kFanLeastGrowth, kWidthFactor * 2 * std::sin(0.5 * degrees * 3.14159265358979 / 180));
+  const double grow = std::max(kFanLeastGrowth, kWidthFactor * 2 * std::sin(0.5 * degrees * kDegree));
   if (t.size() < 3 || !(first > 0) || (!continued && !(first < 0.5 * length))) return;
   auto spacing = [&](double s) {
     const size_t k = static_cast<size_t>(std::upper_bound(t.begin(), t.end(), s) - t.begin());

@@ -500,9 +500,9 @@ double ramp(double x, double x0, double x1) { return std::clamp((x - x0) / (x1 -
 // segment (x from 44 to 57), B falling from 1 to -1 on another (x from 42 to 57). There the sides
 // pass 0.05 apart, at a place inside both chain segments (two skew segments), where no chain vertex
 // or size sample lies: the nearest samples see the strip about three times as wide.
-CadFace pinched_strip() {
+CadFace pinched_strip(double across = 0.05) {
   return strip({0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + 2 * ramp(x, 44, 57); },
-               [](double x) { return 1 - 2 * ramp(x, 42, 57); });
+               [](double x) { return 1 - 2 * ramp(x, 42, 57); }, across);
 }
 
 TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also between chain vertices") {
@@ -540,10 +540,7 @@ TEST_CASE("edge segments shrink at a pinch of a face, down to its width, also be
 TEST_CASE("at a pinch where the sides pass 0.01 apart, edge segments shrink below h / 300") {
   // pinched_strip with its sides 0.01 apart in y. Where two edges touch tangentially the width goes
   // to 0: at h / 300 (0.033 here) gmsh_Solid_56's face 31 kept Lo lambda 0.276 there.
-  const wefm_cad::CadModel m = strip_model(
-      strip({0, 10, 20, 30, 40, 42, 44, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + 2 * ramp(x, 44, 57); },
-            [](double x) { return 1 - 2 * ramp(x, 42, 57); }, 0.01),
-      "hand-made twisted strip, 0.01 across");
+  const wefm_cad::CadModel m = strip_model(pinched_strip(0.01), "hand-made twisted strip, 0.01 across");
   const double h = 10;
   const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
   for (long long side : {1LL, 3LL}) {
@@ -589,41 +586,55 @@ TEST_CASE("edge segments shrink at every pinch along an edge, not only the first
   }
 }
 
-// The strip narrowed to 0.05 across (its sides at one height, y = 0 and 0.05) over 15 of its length,
-// from x = 40 to 55: a narrow arm of the face rather than a point where it pinches.
-CadFace narrow_arm_strip() {
-  return strip({0, 10, 20, 30, 38, 40, 55, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + ramp(x, 38, 40) - ramp(x, 55, 57); },
-               [](double x) { return 1 - ramp(x, 38, 40) + ramp(x, 55, 57); });
+// The strip narrowed to `across` (its sides at one height, y = 0 and `across`) from x = a to b, with
+// ramps 2 long: a narrow arm of the face rather than a point where it pinches. Chain vertices every
+// 10 and at the ramps' ends.
+CadFace narrow_arm_strip(double a, double b, double across) {
+  std::vector<double> xs = {a - 2, a, b, b + 2};
+  for (int x = 0; x <= 100; x += 10) xs.push_back(x);
+  std::sort(xs.begin(), xs.end());
+  xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+  return strip(xs, [=](double x) { return -1 + ramp(x, a - 2, a) - ramp(x, b, b + 2); },
+               [=](double x) { return 1 - ramp(x, a - 2, a) + ramp(x, b, b + 2); }, across);
 }
 
-TEST_CASE("edge segments shrink to the width along a narrow arm of a face up to 200 segments long") {
-  const wefm_cad::CadModel m = strip_model(narrow_arm_strip(), "hand-made strip with a narrow arm");
-  const double h = 10;
-  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
-  for (long long side : {1LL, 3LL}) {
-    CAPTURE(side);
-    const std::vector<double>& p = nodes.at(side).xyz;
-    double longest = 0;
-    for (size_t k = 0; k + 5 < p.size(); k += 3)
-      if (std::min(p[k], p[k + 3]) > 41 && std::max(p[k], p[k + 3]) < 54)
-        longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
-    // About 2.5 times the 0.05 across (some 120 segments along the arm), where the floor away from
-    // pinches (h / 32 = 0.31, once the floor on any run over 50 segments) leaves Lo lambda under 0.1.
-    CHECK(longest > 0.05);
-    CHECK(longest < 0.2);
-    // The arm's segments and the grading back to h on either side, not thousands.
-    CHECK(p.size() / 3 < 400);
+// The longest segment of an edge's nodes `p` lying between x0 and x1.
+double longest_between(const std::vector<double>& p, double x0, double x1) {
+  double longest = 0;
+  for (size_t k = 0; k + 5 < p.size(); k += 3)
+    if (std::min(p[k], p[k + 3]) > x0 && std::max(p[k], p[k + 3]) < x1)
+      longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+  return longest;
+}
+
+TEST_CASE("along a narrow arm of a face edge segments follow its width up to 200 segments, and take 200 on a longer arm") {
+  struct Arm {
+    double a, b, h, x0, x1, shortest, longest;
+  };
+  // An arm 0.05 across and 15 long: about 2.5 times the width (some 120 segments), where the floor
+  // away from pinches (h / 32 = 0.31, once the floor on any run over 50 segments) left Lo lambda
+  // under 0.1. One 60 long (480 segments at 2.5 times the width): about 60 / 200, not h / 32 (0.625,
+  // the floor on such an arm before).
+  for (const Arm& arm : {Arm{40, 55, 10, 41, 54, 0.05, 0.2}, Arm{20, 80, 20, 25, 75, 0.2, 0.4}}) {
+    CAPTURE(arm.b - arm.a);
+    const wefm_cad::CadModel m = strip_model(narrow_arm_strip(arm.a, arm.b, 0.05), "hand-made strip with a narrow arm");
+    const auto nodes = wefm_cad::discretise_model_edges(m, arm.h, std::vector<double>(1, arm.h), 0.3);
+    for (long long side : {1LL, 3LL}) {
+      CAPTURE(side);
+      const double longest = longest_between(nodes.at(side).xyz, arm.x0, arm.x1);
+      CHECK(longest > arm.shortest);
+      CHECK(longest < arm.longest);
+      // The arm's segments and the grading back to h on either side, not thousands.
+      CHECK(nodes.at(side).xyz.size() / 3 < 400);
+    }
   }
 }
 
 TEST_CASE("beside a cusp, a narrow arm far narrower than the cusp's wedge is still sized by its width") {
-  // narrow_arm_strip 0.01 across, and a 9-degree cusp at the arm's end (x = 55): within h / 2 of a cusp
-  // the width rule leaves the edges to the cusp's fan, which grows as the wedge widens; the arm does
-  // not widen (nodeocc_kuka's plate 418 at 1/20: segments of 5 to 10 along an arm 0.03 wide).
-  const wefm_cad::CadModel m = strip_model(
-      strip({0, 10, 20, 30, 38, 40, 55, 57, 60, 70, 80, 90, 100}, [](double x) { return -1 + ramp(x, 38, 40) - ramp(x, 55, 57); },
-            [](double x) { return 1 - ramp(x, 38, 40) + ramp(x, 55, 57); }, 0.01),
-      "hand-made strip with a narrow arm beside a cusp");
+  // The arm 0.01 across, and a 9-degree cusp at its end (x = 55): within h / 2 of a cusp the width
+  // rule leaves the edges to the cusp's fan, which grows as the wedge widens; the arm does not widen
+  // (nodeocc_kuka's plate 418 at 1/20: segments of 5 to 10 along an arm 0.03 wide).
+  const wefm_cad::CadModel m = strip_model(narrow_arm_strip(40, 55, 0.01), "hand-made strip with a narrow arm beside a cusp");
   const double h = 10;
   wefm_cad::Cusp cusp;
   cusp.point = {55.0, 0.0, 0.0};
@@ -631,37 +642,11 @@ TEST_CASE("beside a cusp, a narrow arm far narrower than the cusp's wedge is sti
   const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3, {cusp});
   for (long long side : {1LL, 3LL}) {
     CAPTURE(side);
-    const std::vector<double>& p = nodes.at(side).xyz;
-    double longest = 0;
-    for (size_t k = 0; k + 5 < p.size(); k += 3)
-      if (std::min(p[k], p[k + 3]) > 50 && std::max(p[k], p[k + 3]) < 52.3)
-        longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
+    const double longest = longest_between(nodes.at(side).xyz, 50, 52.3);
     // The arm's segments (200 over its 15 at most) up to the last size sample (h / 4 apart) that is
     // within the cusp's wedge, not segments growing from 2.5 back beside it.
     CHECK(longest > 0);
     CHECK(longest < 0.1);
-  }
-}
-
-TEST_CASE("along a longer narrow arm, edge segments shrink as far as 200 segments over its length allow") {
-  // The strip narrowed to 0.05 across from x = 20 to 80: at 2.5 times the width, 480 segments.
-  const wefm_cad::CadModel m = strip_model(
-      strip({0, 10, 18, 20, 30, 40, 50, 60, 70, 80, 82, 90, 100}, [](double x) { return -1 + ramp(x, 18, 20) - ramp(x, 80, 82); },
-            [](double x) { return 1 - ramp(x, 18, 20) + ramp(x, 80, 82); }),
-      "hand-made strip with a long narrow arm");
-  const double h = 20;
-  const auto nodes = wefm_cad::discretise_model_edges(m, h, std::vector<double>(1, h), 0.3);
-  for (long long side : {1LL, 3LL}) {
-    CAPTURE(side);
-    const std::vector<double>& p = nodes.at(side).xyz;
-    double longest = 0;
-    for (size_t k = 0; k + 5 < p.size(); k += 3)
-      if (std::min(p[k], p[k + 3]) > 25 && std::max(p[k], p[k + 3]) < 75)
-        longest = std::max(longest, std::hypot(p[k + 3] - p[k], p[k + 4] - p[k + 1], p[k + 5] - p[k + 2]));
-    // About 60 / 200: not h / 32 (0.625, the floor on such an arm before), not 2.5 times the width.
-    CHECK(longest > 0.2);
-    CHECK(longest < 0.4);
-    CHECK(p.size() / 3 < 400);
   }
 }
 
