@@ -626,8 +626,8 @@ double narrow_floor(double wide, double h, double floor, double ceiling, const s
 
 // Lowers the sizes along the edges where a face is narrower than them, to kWidthFactor times its
 // width: down to narrow_floor's floor (h / kPinchFloorFraction on a pinched face, at most
-// h / kNarrowestCornerFraction); not at all in a cusp's wedge. Decided per face: a floor that changed from sample to sample would make
-// the sizes along its edges rise and fall.
+// h / kNarrowestCornerFraction); not at all in a cusp's wedge. Decided per face: a floor that
+// changed from sample to sample would make the sizes along its edges rise and fall.
 void lower_across_faces(const CadModel& model, double h, const std::vector<Cusp>& cusps, std::map<long long, SizeProfile>& profiles) {
   const double floor = h / kPinchFloorFraction, segments = needle_segments(model, h);
   std::vector<Across> across;
