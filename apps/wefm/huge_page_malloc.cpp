@@ -104,10 +104,19 @@ void reexec_with_huge_page_malloc(int argc, char** argv) {
   if (!glibc_has_tunable() || !thp_in_madvise_mode() || mem_free_kb() < 2LL * 1024 * 1024) return;
   const std::string before = tunables ? tunables : "";
   if (!add_huge_page_malloc_tunable()) return;
+  // OpenBLAS reads OPENBLAS_NUM_THREADS while it loads: at 1 it starts no pool, whose threads
+  // otherwise spin for a CPU at every start (about 14 ms of a small model's 140 ms on 2 CPUs). The
+  // tool sets 1 for every solve when the variable is unset (process_policy.cpp), so the started-again
+  // process computes the same bits.
+  const char* blas = std::getenv("OPENBLAS_NUM_THREADS");
+  const bool had_blas = blas != nullptr, set_blas = !(blas && *blas);
+  if (set_blas) setenv("OPENBLAS_NUM_THREADS", "1", 1);
   execv("/proc/self/exe", argv);
   // exec failed (no /proc, say): go on in this process, without the tunable.
   if (tunables) setenv("GLIBC_TUNABLES", before.c_str(), 1);
   else unsetenv("GLIBC_TUNABLES");
+  if (set_blas && had_blas) setenv("OPENBLAS_NUM_THREADS", "", 1);
+  else if (set_blas) unsetenv("OPENBLAS_NUM_THREADS");
 #else
   (void)argc;
   (void)argv;
