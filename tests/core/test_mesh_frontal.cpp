@@ -129,6 +129,43 @@ TEST_CASE("the size field is h away from short segments and grows from them at t
   CHECK(flat.at(Vec3(0.5, 0.5, 0)) == 0.05);
 }
 
+TEST_CASE("the size field equals the smallest l + g d over its sources, for a dense cluster among sparse segments") {
+  // A loop of long segments round a spiral of thousands of tiny ones (text engraved on a face), and
+  // a second loop far off: the field's search over boxes of sources must give the value of the
+  // brute-force minimum, bit for bit, at points inside, beside and far from the cluster.
+  meshing::LoopNodes spiral, frame, far_loop;
+  for (int k = 0; k < 3000; ++k) {
+    const double t = 0.01 * k, r = 0.2 + 0.0005 * k;
+    spiral.xyz.emplace_back(r * std::cos(t), r * std::sin(t), 1e-4 * (k % 7));
+  }
+  for (const auto& p : {Vec3(-3, -3, 0), Vec3(3, -3, 0), Vec3(3, 3, 0), Vec3(-3, 3, 0)}) frame.xyz.push_back(p);
+  for (int k = 0; k < 40; ++k) far_loop.xyz.emplace_back(50 + 0.05 * k, 0.3 * (k % 2), 0);
+  for (auto* l : {&spiral, &frame, &far_loop}) l->uv.resize(l->xyz.size(), P2::Zero());
+  const std::vector<meshing::LoopNodes> loops{spiral, frame, far_loop};
+  const double h = 0.8, g = 0.3;
+  const meshing::SizeField field(loops, h, g);
+  std::uint64_t state = 12345;
+  auto next = [&state] { state = state * 6364136223846793005ull + 1442695040888963407ull; return static_cast<double>(state >> 11) / 9007199254740992.0; };
+  int below_h = 0;
+  for (int q = 0; q < 2000; ++q) {
+    const double spread = q % 3 == 0 ? 1.0 : q % 3 == 1 ? 4.0 : 60.0;
+    const Vec3 x((2 * next() - 1) * spread, (2 * next() - 1) * spread, 0.1 * (2 * next() - 1));
+    double best = h;
+    for (const auto& l : loops) {
+      const size_t n = l.xyz.size();
+      for (size_t k = 0; k < n; ++k) {
+        const Vec3 &a = l.xyz[k], &b = l.xyz[(k + 1) % n];
+        const double len = (b - a).norm();
+        if (!(len < 0.98 * h) || !(len > 0) || !(len < best)) continue;
+        best = std::min(best, len + g * std::sqrt((x - 0.5 * (a + b)).squaredNorm()));
+      }
+    }
+    CHECK(field.at(x) == best);
+    below_h += best < h;
+  }
+  CHECK(below_h > 500);  // the points do reach the sources
+}
+
 TEST_CASE("frontal refinement leaves a valid constrained Delaunay triangulation, all of it at the size") {
   const auto f = test::solved(test::flat_patch(12));
   const double h = 0.08;

@@ -6,7 +6,6 @@
 namespace wefm::meshing {
 
 SizeField::SizeField(const std::vector<LoopNodes>& loops, double h, double gradation) : h_(h), g_(std::max(gradation, 1e-6)) {
-  double lmin = h;
   for (const LoopNodes& l : loops) {
     const size_t n = l.xyz.size();
     for (size_t k = 0; k < n; ++k) {
@@ -16,69 +15,69 @@ SizeField::SizeField(const std::vector<LoopNodes>& loops, double h, double grada
       // that rounding of the edge discretisation leaves (h / 0.98) from becoming sources.
       if (!(len < 0.98 * h) || !(len > 0)) continue;
       src_.push_back({0.5 * (a + b), len});
-      lmin = std::min(lmin, len);
     }
   }
   if (src_.empty()) return;
-  reach_ = (h - lmin) / g_;
-  Vec3 hi = Vec3::Constant(-1e300);
-  lo_ = Vec3::Constant(1e300);
-  for (const Source& s : src_) lo_ = lo_.cwiseMin(s.c), hi = hi.cwiseMax(s.c);
-  cell_ = std::max(reach_, 1e-12 * std::max((hi - lo_).norm(), 1e-300));
-  for (;;) {
-    double total = 1;
-    for (int k = 0; k < 3; ++k) {
-      n_[k] = static_cast<int>((hi[k] - lo_[k]) / cell_) + 1;
-      total *= n_[k];
-    }
-    if (total <= 4.0 * static_cast<double>(src_.size()) + 64) break;
-    cell_ *= 1.5;
-  }
-  auto cell_id = [&](const Vec3& c) {
-    size_t id = 0;
-    for (int k = 2; k >= 0; --k) id = id * static_cast<size_t>(n_[k]) + static_cast<size_t>(std::clamp(static_cast<int>((c[k] - lo_[k]) / cell_), 0, n_[k] - 1));
-    return id;
-  };
-  start_.assign(static_cast<size_t>(n_[0]) * static_cast<size_t>(n_[1]) * static_cast<size_t>(n_[2]) + 1, 0);
-  for (const Source& s : src_) start_[cell_id(s.c) + 1]++;
-  for (size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
-  items_.resize(src_.size());
-  std::vector<Index> fill(start_.begin(), start_.end() - 1);
-  for (size_t i = 0; i < src_.size(); ++i) items_[static_cast<size_t>(fill[cell_id(src_[i].c)]++)] = static_cast<Index>(i);
+  nodes_.reserve(4 * src_.size() / kLeaf + 4);
+  build(0, static_cast<Index>(src_.size()));
 }
 
-bool SizeField::beyond(double d2, double gap) const {
-  // True only where l + g sqrt(d2) >= l + gap however the terms round: the margin on the squared
-  // reach is far above the few roundings between the two; tiny reaches (where squares lose
-  // precision) are always measured.
-  const double r = gap / g_;
-  const double r2 = r * r;
-  return r2 > 1e-250 && d2 > r2 * (1 + 1e-6);
+Index SizeField::build(Index first, Index last) {
+  Node n{Vec3::Constant(1e300), Vec3::Constant(-1e300), 1e300, first, last, -1, -1};
+  for (Index k = first; k < last; ++k) {
+    const Source& s = src_[static_cast<size_t>(k)];
+    n.lo = n.lo.cwiseMin(s.c), n.hi = n.hi.cwiseMax(s.c), n.lmin = std::min(n.lmin, s.l);
+  }
+  const Index id = static_cast<Index>(nodes_.size());
+  nodes_.push_back(n);
+  if (last - first <= kLeaf) return id;
+  // Split at the median along the box's longest side.
+  int axis = 0;
+  (n.hi - n.lo).maxCoeff(&axis);
+  const Index mid = first + (last - first) / 2;
+  std::nth_element(src_.begin() + first, src_.begin() + mid, src_.begin() + last,
+                   [axis](const Source& a, const Source& b) { return a.c[axis] < b.c[axis]; });
+  const Index left = build(first, mid);
+  const Index right = build(mid, last);
+  nodes_[static_cast<size_t>(id)].left = left;
+  nodes_[static_cast<size_t>(id)].right = right;
+  return id;
+}
+
+double SizeField::bound(const Node& n, const Vec3& x) const {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = std::max({0.0, n.lo[k] - x[k], x[k] - n.hi[k]});
+    d2 += d * d;
+  }
+  // Shrunk a little below the box's distance, so that rounding never puts the bound above the value
+  // l + g |x - c| of a source in the box: a box is skipped only when none of its sources can lower
+  // the size, and the field is the brute-force minimum bit for bit.
+  return n.lmin + g_ * std::sqrt(d2 * (1 - 1e-9));
+}
+
+void SizeField::visit(Index node, const Vec3& x, double& best) const {
+  const Node& n = nodes_[static_cast<size_t>(node)];
+  if (n.left < 0) {
+    for (Index k = n.first; k < n.last; ++k) {
+      const Source& s = src_[static_cast<size_t>(k)];
+      if (!(s.l < best)) continue;
+      best = std::min(best, s.l + g_ * std::sqrt((x - s.c).squaredNorm()));
+    }
+    return;
+  }
+  // The nearer box first: its sources lower `best`, and the other box may then be skipped.
+  Index a = n.left, b = n.right;
+  double ba = bound(nodes_[static_cast<size_t>(a)], x), bb = bound(nodes_[static_cast<size_t>(b)], x);
+  if (bb < ba) std::swap(a, b), std::swap(ba, bb);
+  if (ba < best) visit(a, x, best);
+  if (bb < best) visit(b, x, best);
 }
 
 double SizeField::at(const Vec3& x) const {
   double best = h_;
-  if (src_.empty()) return best;
-  int c[3];
-  for (int k = 0; k < 3; ++k) {
-    const double f = std::floor((x[k] - lo_[k]) / cell_);
-    // A point more than one cell outside the sources' box is beyond every source's reach.
-    if (f < -1 || f > n_[k]) return best;
-    c[k] = static_cast<int>(f);
-  }
-  for (int z = std::max(0, c[2] - 1); z <= std::min(n_[2] - 1, c[2] + 1); ++z)
-    for (int y = std::max(0, c[1] - 1); y <= std::min(n_[1] - 1, c[1] + 1); ++y)
-      for (int xx = std::max(0, c[0] - 1); xx <= std::min(n_[0] - 1, c[0] + 1); ++xx) {
-        const size_t id = (static_cast<size_t>(z) * static_cast<size_t>(n_[1]) + static_cast<size_t>(y)) * static_cast<size_t>(n_[0]) + static_cast<size_t>(xx);
-        for (Index k = start_[id]; k < start_[id + 1]; ++k) {
-          const Source& s = src_[static_cast<size_t>(items_[static_cast<size_t>(k)])];
-          // l + g d >= l: a source no shorter than the best size cannot lower it.
-          if (!(s.l < best)) continue;
-          const double d2 = (x - s.c).squaredNorm();
-          if (beyond(d2, best - s.l)) continue;
-          best = std::min(best, s.l + g_ * std::sqrt(d2));
-        }
-      }
+  if (nodes_.empty() || !(bound(nodes_[0], x) < best)) return best;
+  visit(0, x, best);
   return best;
 }
 

@@ -23,21 +23,26 @@ class SizeField {
   double h() const { return h_; }
 
  private:
-  // True when a source at squared distance d2 cannot reach below its length + gap.
-  bool beyond(double d2, double gap) const;
-
   struct Source {
     Vec3 c;
     double l;
   };
+  // A box of the k-d tree over the sources' midpoints: the sources' bounding box and their shortest
+  // length; children `left` and `right`, or -1 for a leaf, whose sources are src_[first, last).
+  struct Node {
+    Vec3 lo, hi;
+    double lmin;
+    Index first, last, left, right;
+  };
+  static constexpr Index kLeaf = 8;
+  Index build(Index first, Index last);
+  // Smallest l + g |x - c| any source in the box can give (a lower bound).
+  double bound(const Node& n, const Vec3& x) const;
+  void visit(Index node, const Vec3& x, double& best) const;
+
   double h_, g_;
-  double reach_ = 0;  // farthest distance at which a source still lowers the size below h
   std::vector<Source> src_;
-  // Uniform grid of the sources, cells at least `reach_` wide: a query reads a 3x3x3 block.
-  Vec3 lo_ = Vec3::Zero();
-  double cell_ = 1;
-  int n_[3] = {1, 1, 1};
-  std::vector<Index> start_, items_;
+  std::vector<Node> nodes_;
 };
 
 }  // namespace wefm::meshing
