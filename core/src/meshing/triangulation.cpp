@@ -351,13 +351,23 @@ std::vector<Index> Triangulation::star(Index a) const {
 }
 
 Index Triangulation::edge_triangle(Index a, Index b, int* i) const {
-  for (Index t : star(a)) {
-    const T& tt = tris_[t];
-    for (int k = 0; k < 3; ++k)
-      if (tt.v[k] == a && tt.v[nx(k)] == b) {
+  // At most one triangle holds the directed edge a -> b: the fan round a is walked one way from
+  // vtri_[a], and the other way from it should the walk leave the triangulation, without the list
+  // star() builds (recovering every boundary segment asks this twice).
+  const Index start = vtri_[a];
+  for (const int way : {1, 2}) {
+    Index t = start;
+    do {
+      const T& tt = tris_[t];
+      int k = 0;
+      while (tt.v[k] != a) ++k;
+      if (tt.v[nx(k)] == b) {
         *i = pv(k);
         return t;
       }
+      t = way == 1 ? tt.n[pv(k)] : tt.n[nx(k)];
+    } while (t >= 0 && t != start);
+    if (t == start) break;  // the fan closed: every triangle round a was seen
   }
   return -1;
 }
