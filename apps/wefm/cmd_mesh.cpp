@@ -38,7 +38,7 @@ std::vector<OptionSpec> mesh_specs() {
        false},
       {"triangles", 0, "", "transfinite: split every quad into two triangles", "", false},
       {"elements", 0, "tri|quad-dominant|quad", "free: triangles; quads where pairs of triangles make good ones (scaled Jacobian >= 0.3); or all quads (each element split at its edge midpoints and centre: sides about H / 2; a transfinite grid halved both ways)", "tri", false},
-      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves, then up to 3 optimisation passes (0: neither)", "5", false},
+      {"smoothing", 0, "N", "free: smoothing passes kept only where the 3D quality improves (from the fourth, only nodes of elements under lambda 0.6), then up to 3 optimisation passes (0: neither)", "5", false},
       {"min-angle", 0, "DEG", "free: UV angle bound of the circumcentre refinement after the front", "28", false},
       {"corner-angle", 0, "DEG", "loop vertices turning more than this stay boundary nodes", "30", false},
       {"max-elements", 0, "N", "fail rather than exceed this many elements (0 = no cap)", "0", false},

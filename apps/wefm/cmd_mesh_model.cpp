@@ -87,7 +87,7 @@ std::vector<OptionSpec> mesh_model_specs() {
                                     "the free mesh is then made too); 0: any grid", "0", false},
       {"no-mapped-tubes", 0, "", "mesh thin tubes free (default: a tube narrower than H, a seam and two ends with as "
                                  "many segments, is meshed as a mapped strip, elements twice as long as wide along its axis)", "", false},
-      {"smoothing", 0, "N", "smoothing passes of free meshes, then up to 3 optimisation passes (0: neither)", smooth, false},
+      {"smoothing", 0, "N", "smoothing passes of free meshes (from the fourth, only nodes of elements under lambda 0.6), then up to 3 optimisation passes (0: neither)", smooth, false},
       {"elements", 0, "tri|quad-dominant|quad", "free faces: triangles, or quads where pairs of triangles make good ones "
                                                "(scaled Jacobian >= 0.3; mapped faces then keep their quads too), or all quads: "
                                                "every element of those split into quads at its edges' middles and centre, "

@@ -777,7 +777,7 @@ typedef struct wefm_mesh_options {
   double size;               /**< target 3D element size h (> 0). Required */
   int32_t corners[4];        /**< transfinite and automatic corners as vertex uses on the outer loop, -1 = detect. Default -1 */
   int quads;                 /**< transfinite: non-zero writes quads, zero splits each into two triangles. Default 1 */
-  int smoothing_iterations;  /**< free meshes: smoothing passes accepted only if 3D quality improves, then min(this, 3) passes optimising sum log lambda. Default 5 */
+  int smoothing_iterations;  /**< free meshes: smoothing passes accepted only if 3D quality improves (from the fourth, only nodes whose elements include one under Lo lambda 0.6), then min(this, 3) passes optimising sum log lambda. Default 5 */
   double corner_angle_deg;   /**< loop vertices turning more than this are kept as nodes. Default 30 */
   double min_angle_deg;      /**< angle bound in UV of the circumcentre refinement after the front. Default 28 */
   int64_t max_elements;      /**< refuse to exceed this many elements (0 = no cap). Default 0 */
