@@ -289,9 +289,11 @@ bool compass_search(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vect
 }
 
 // Moves node v (its triangles: `star`, reset to them) towards better shaped elements; true when it
-// moved.
+// moved. A node whose star's worst element is not below `below` stays (2, above any quality: none).
 bool move_node(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tri3>& tris, Index v, NodeStar& star, const SurfaceMap& map,
                double below = 2) {
+  const double before = star.worst();
+  if (!(before < below)) return false;
   const size_t vi = static_cast<size_t>(v);
   // Two targets: the neighbours' centroid, and the mean of the apexes of the equilateral
   // triangles standing on the opposite edges (pulls a node towards well-shaped elements).
@@ -307,8 +309,6 @@ bool move_node(std::vector<P2>& uv, std::vector<Vec3>& xyz, const std::vector<Tr
     centroid += a + b;
     count += 2;
   }
-  const double before = star.worst();
-  if (!(before < below)) return false;
   centroid /= count;
   ideal /= static_cast<double>(star.last() - star.first());
   const double before_mean = star.sum_log();
