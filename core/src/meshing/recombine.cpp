@@ -118,6 +118,13 @@ bool augment(Index start, const std::vector<Candidate>& cand, const std::vector<
   return false;
 }
 
+// The quads' bar (issue 32: scaled Jacobian 0.3). A move is judged by the worst element round the
+// node, which may be a triangle under it (Lo lambda 0.19 beside a sliver): in a quad-dominant mesh,
+// whose quads recombine made at or above the bar, a move keeps them there all the same.
+constexpr double kQuadBar = 0.3;
+
+bool is_quad(const DomainMesh& m, size_t e) { return m.elements[4 * e + 3] >= 0; }
+
 // The quality of element e in 3D: a quad's scaled Jacobian, a triangle's Lo lambda (both 1 at best,
 // 0 or less when degenerate or folded); -1 when it is not convex (a quad) or inverted (a triangle)
 // in UV, where it must stay a valid element of the domain.
@@ -180,7 +187,7 @@ void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::v
   const double keep = now > 0 ? floor : kUnfoldedFloor;
   std::vector<size_t> held;  // the quads at or above `keep`
   for (size_t e : around)
-    if (m.elements[4 * e + 3] >= 0 && element_quality(m, e) >= keep) held.push_back(e);
+    if (is_quad(m, e) && element_quality(m, e) >= keep) held.push_back(e);
   compass(m, map, i, step, 6, now, [&] { return worst_of(m, held) < keep ? -HUGE_VAL : worst_of(m, around); });
 }
 
@@ -189,19 +196,23 @@ void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::v
 // little over lifting one. Skips a node beside a folded element (compass_search's work).
 void raise_mean(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step) {
   double worst = 2, sum = 0;
+  bool held = true;
+  std::vector<char> at_bar(around.size(), 0);
   auto measure = [&] {
-    worst = 2, sum = 0;
-    for (size_t e : around) {
-      const double q = element_quality(m, e);
+    worst = 2, sum = 0, held = true;
+    for (size_t k = 0; k < around.size(); ++k) {
+      const double q = element_quality(m, around[k]);
       worst = std::min(worst, q), sum += std::log(std::max(q, 1e-12));
+      held = held && !(at_bar[k] && q < kQuadBar);
     }
   };
+  for (size_t k = 0; k < around.size(); ++k) at_bar[k] = is_quad(m, around[k]) && element_quality(m, around[k]) >= kQuadBar;
   measure();
   const double floor = worst;
   if (!(floor > 0)) return;
   compass(m, map, i, step, 3, sum, [&] {
     measure();
-    return worst >= floor ? sum : -HUGE_VAL;
+    return worst >= floor && held ? sum : -HUGE_VAL;
   });
 }
 
@@ -287,13 +298,16 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mea
     for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
     compass_search(m, map, i, around[i], 0.25 * reach / static_cast<double>(neighbours[i].size()), kSearchBelow);
   };
+  std::vector<char> at_bar;  // per element round the node: a quad at or above kQuadBar
   for (int pass = 0; pass < passes; ++pass) {
     for (size_t i = first_free; i < n; ++i) {
       if (neighbours[i].empty()) continue;
       double worst = 2, sum = 0;
-      for (size_t e : around[i]) {
-        const double q = element_quality(m, e);
+      at_bar.assign(around[i].size(), 0);
+      for (size_t k = 0; k < around[i].size(); ++k) {
+        const double q = element_quality(m, around[i][k]);
         worst = std::min(worst, q), sum += q;
+        at_bar[k] = for_mean && is_quad(m, around[i][k]) && q >= kQuadBar;
       }
       P2 target = P2::Zero();
       for (Index j : neighbours[i]) target += m.uv[static_cast<size_t>(j)];
@@ -309,11 +323,13 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mea
         if (!map.lift(m.uv[i], x, &nrm)) continue;
         m.xyz[i] = x, m.normal[i] = nrm;
         double w = 2, su = 0;
-        for (size_t e : around[i]) {
-          const double q = element_quality(m, e);
+        bool held = true;
+        for (size_t k = 0; k < around[i].size(); ++k) {
+          const double q = element_quality(m, around[i][k]);
           w = std::min(w, q), su += q;
+          held = held && !(at_bar[k] && q < kQuadBar);
         }
-        if (w >= worst && su > sum) {
+        if (w >= worst && su > sum && held) {
           kept = true;
           break;
         }
