@@ -18,7 +18,8 @@ void recombine(DomainMesh& m, double min_quality);
 // Moves the nodes inside the face (from boundary_nodes on) of a quad-dominant or all-quad mesh
 // towards the mean of their neighbours in UV, `passes` times, each move kept only where the worst
 // element around the node gets no worse and the elements round it better on the whole (scaled
-// Jacobian of quads, Lo lambda of triangles, in 3D; quads kept convex in UV). With `for_mean`, then
+// Jacobian of quads, Lo lambda of triangles, in 3D; quads kept convex in UV; with `for_mean`, quads
+// at scaled Jacobian 0.3 or more kept there, even where a triangle is the worst). With `for_mean`, then
 // a few passes of compass moves for the elements' geometric mean, the worst around each node no
 // worse: for quad-dominant meshes; an all-quad mesh has four times the nodes for less gain.
 void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mean);
