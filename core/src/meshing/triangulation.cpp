@@ -354,13 +354,17 @@ Index Triangulation::edge_triangle(Index a, Index b, int* i) const {
   // At most one triangle holds the directed edge a -> b: the fan round a is walked one way from
   // vtri_[a], and the other way from it should the walk leave the triangulation, without the list
   // star() builds (recovering every boundary segment asks this twice).
+  // A walk longer than the triangulation (a fan that never closes: never in a valid one) ends in the
+  // old search over the star.
   const Index start = vtri_[a];
+  size_t steps = 0;
   for (const int way : {1, 2}) {
     Index t = start;
     do {
       const T& tt = tris_[t];
       int k = 0;
-      while (tt.v[k] != a) ++k;
+      while (k < 3 && tt.v[k] != a) ++k;
+      if (k == 3 || ++steps > tris_.size()) return edge_triangle_in_star(a, b, i);
       if (tt.v[nx(k)] == b) {
         *i = pv(k);
         return t;
@@ -368,6 +372,18 @@ Index Triangulation::edge_triangle(Index a, Index b, int* i) const {
       t = way == 1 ? tt.n[pv(k)] : tt.n[nx(k)];
     } while (t >= 0 && t != start);
     if (t == start) break;  // the fan closed: every triangle round a was seen
+  }
+  return -1;
+}
+
+Index Triangulation::edge_triangle_in_star(Index a, Index b, int* i) const {
+  for (Index t : star(a)) {
+    const T& tt = tris_[t];
+    for (int k = 0; k < 3; ++k)
+      if (tt.v[k] == a && tt.v[nx(k)] == b) {
+        *i = pv(k);
+        return t;
+      }
   }
   return -1;
 }

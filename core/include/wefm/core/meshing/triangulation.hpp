@@ -75,6 +75,7 @@ class Triangulation {
   void flip(Index t, int i);
   void link(Index t, int i, Index s);
   Index edge_triangle(Index a, Index b, int* i) const;  // triangle with directed edge a->b
+  Index edge_triangle_in_star(Index a, Index b, int* i) const;  // the same, searched in star(a)
   std::vector<Index> star(Index a) const;               // live triangles around internal node a
   void recover(Index a, Index b);
   void mark_inside();
