@@ -191,28 +191,41 @@ void compass_search(DomainMesh& m, const SurfaceMap& map, size_t i, const std::v
   compass(m, map, i, step, 6, now, [&] { return worst_of(m, held) < keep ? -HUGE_VAL : worst_of(m, around); });
 }
 
+// The elements round a node as a move sees them: the worst quality, the sum of f(quality), and
+// whether every quad that was at the quads' bar before the move still is.
+struct Star {
+  double worst = 2, sum = 0;
+  bool held = true;
+};
+
+// Measures the elements `es` round a node. On the first call for a node `at_bar` is empty and is
+// filled (with `keep_quads`: the quads at or above kQuadBar, else none); later calls check them.
+template <class F>
+Star measure_star(const DomainMesh& m, const std::vector<size_t>& es, std::vector<char>& at_bar, bool keep_quads, const F& f) {
+  const bool first = at_bar.empty();
+  if (first) at_bar.assign(es.size(), 0);
+  Star s;
+  for (size_t k = 0; k < es.size(); ++k) {
+    const double q = element_quality(m, es[k]);
+    s.worst = std::min(s.worst, q), s.sum += f(q);
+    if (first) at_bar[k] = keep_quads && is_quad(m, es[k]) && q >= kQuadBar;
+    s.held = s.held && !(at_bar[k] && q < kQuadBar);
+  }
+  return s;
+}
+
+double log_quality(double q) { return std::log(std::max(q, 1e-12)); }
+
 // Compass search on the sum of log qualities around node i (the step halved twice from `step`),
 // keeping the worst element around it no worse: the geometric mean rewards squaring every quad a
 // little over lifting one. Skips a node beside a folded element (compass_search's work).
 void raise_mean(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vector<size_t>& around, double step) {
-  double worst = 2, sum = 0;
-  bool held = true;
-  std::vector<char> at_bar(around.size(), 0);
-  auto measure = [&] {
-    worst = 2, sum = 0, held = true;
-    for (size_t k = 0; k < around.size(); ++k) {
-      const double q = element_quality(m, around[k]);
-      worst = std::min(worst, q), sum += std::log(std::max(q, 1e-12));
-      held = held && !(at_bar[k] && q < kQuadBar);
-    }
-  };
-  for (size_t k = 0; k < around.size(); ++k) at_bar[k] = is_quad(m, around[k]) && element_quality(m, around[k]) >= kQuadBar;
-  measure();
-  const double floor = worst;
-  if (!(floor > 0)) return;
-  compass(m, map, i, step, 3, sum, [&] {
-    measure();
-    return worst >= floor && held ? sum : -HUGE_VAL;
+  std::vector<char> at_bar;
+  const Star now = measure_star(m, around, at_bar, true, log_quality);
+  if (!(now.worst > 0)) return;
+  compass(m, map, i, step, 3, now.sum, [&] {
+    const Star s = measure_star(m, around, at_bar, true, log_quality);
+    return s.worst >= now.worst && s.held ? s.sum : -HUGE_VAL;
   });
 }
 
@@ -221,8 +234,9 @@ void raise_mean(DomainMesh& m, const SurfaceMap& map, size_t i, const std::vecto
 constexpr int kMeanPasses = 2;
 constexpr double kMeanStep = 0.1;
 
-// Nodes whose worst element stays below this after the Laplacian move get a compass search.
-constexpr double kSearchBelow = 0.3;
+// Nodes whose worst element stays below this after the Laplacian move get a compass search: the
+// quads' bar, which the search then keeps the quads at.
+constexpr double kSearchBelow = kQuadBar;
 // Rounds of compass search over the nodes of folded elements and their neighbours, after the passes.
 constexpr int kUnfoldRounds = 8;
 
@@ -298,17 +312,13 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mea
     for (Index j : neighbours[i]) reach += (m.uv[static_cast<size_t>(j)] - m.uv[i]).norm();
     compass_search(m, map, i, around[i], 0.25 * reach / static_cast<double>(neighbours[i].size()), kSearchBelow);
   };
-  std::vector<char> at_bar;  // per element round the node: a quad at or above kQuadBar
+  auto identity = [](double q) { return q; };
+  std::vector<char> at_bar;  // per element round the node: a quad a move keeps at the bar
   for (int pass = 0; pass < passes; ++pass) {
     for (size_t i = first_free; i < n; ++i) {
       if (neighbours[i].empty()) continue;
-      double worst = 2, sum = 0;
-      at_bar.assign(around[i].size(), 0);
-      for (size_t k = 0; k < around[i].size(); ++k) {
-        const double q = element_quality(m, around[i][k]);
-        worst = std::min(worst, q), sum += q;
-        at_bar[k] = for_mean && is_quad(m, around[i][k]) && q >= kQuadBar;
-      }
+      at_bar.clear();
+      const Star now = measure_star(m, around[i], at_bar, for_mean, identity);
       P2 target = P2::Zero();
       for (Index j : neighbours[i]) target += m.uv[static_cast<size_t>(j)];
       target /= static_cast<double>(neighbours[i].size());
@@ -322,14 +332,8 @@ void smooth_quads(DomainMesh& m, const SurfaceMap& map, int passes, bool for_mea
         Vec3 x, nrm;
         if (!map.lift(m.uv[i], x, &nrm)) continue;
         m.xyz[i] = x, m.normal[i] = nrm;
-        double w = 2, su = 0;
-        bool held = true;
-        for (size_t k = 0; k < around[i].size(); ++k) {
-          const double q = element_quality(m, around[i][k]);
-          w = std::min(w, q), su += q;
-          held = held && !(at_bar[k] && q < kQuadBar);
-        }
-        if (w >= worst && su > sum && held) {
+        const Star s = measure_star(m, around[i], at_bar, for_mean, identity);
+        if (s.worst >= now.worst && s.sum > now.sum && s.held) {
           kept = true;
           break;
         }
