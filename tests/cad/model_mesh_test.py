@@ -26,6 +26,11 @@ edges chamfered by 0.018; made with Gmsh 4.8 (OpenCASCADE factory: `Torus`, `Cha
 `gmsh x.geo -0 -o x.step`). Read back, the chamfer's B-spline face is not valid by Open CASCADE's own
 check (BRepCheck_UnorientableShape) and BRepMesh gives it no facets.
 
+folded_loft.step (tests/cad/data): the random model g5315 of `bench/stress/make_random_models.py OUT 120
+5001` (Gmsh 4.8, OpenCASCADE factory: a B-spline solid lofted through four closed splines, less a
+partial cylinder, a cone and a stretched sphere); what is left is one B-spline face whose flattening
+has 330 flipped facets at every s, so its domain overlaps itself and the lift jumps across the fold.
+
 pointed_cone.brep (tests/cad/data): a cone of base radius 0.42 and height 1.3 coming to a point, its
 base edge filleted (radius 0.08); made with Gmsh 4.8 (OpenCASCADE factory: `Cone(1) = {0,0,0, 0,0,1.3,
 0.42, 0}`, `Fillet` of its edges, `Save "x.brep"`).
@@ -400,6 +405,21 @@ def check_pointed_cone(wefm, path, apex, tmp):
     print(f"{name}: the apex kept, the mesh closed, in triangles and quads")
 
 
+def check_folded_loft(wefm, path, tmp):
+    """folded_loft.step at 1/40: circumcentre refinement split the triangles straddling the fold of its
+    domain again and again (each child straddles the same jump of the lift) until the node budget:
+    25,329 triangles, 20,000 of them under a thousandth of the size in a spot 0.01 across, lambda_mesh
+    0.15, exit 0. At 1/33 and 1/10 the same face gave about 1,100 to 1,700 triangles, lambda_mesh 0.94.
+    Now refinement leaves a triangle across such a jump alone (free_mesh.cpp, lift_jumps)."""
+    msh, rep = os.path.join(tmp, "folded_loft.msh"), os.path.join(tmp, "folded_loft.json")
+    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q"],
+                       capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
+    r = json.load(open(rep))
+    assert r["triangles"] < 4000 and r["lambda_mesh"] > 0.8, (r["triangles"], r["lambda_mesh"])
+    print(f"folded_loft.step: {r['triangles']} triangles, lambda_mesh {r['lambda_mesh']:.3f}, min {r['lambda_min']:.3f}")
+
+
 def check_invalid_face(wefm, path, tmp):
     """A face the import cannot take because the B-rep itself is broken: the run exits 5, names the
     face, and says that Open CASCADE's own check rejects it, so the user looks at the model."""
@@ -440,6 +460,7 @@ def main():
         check_pointed_cone(wefm, os.path.join(data, "needle_cone.brep"), (0.0, 0.0, 1.5), tmp)
         check_pointed_cone(wefm, os.path.join(data, "needle_ellipsoid.brep"), (0.0, 0.0, 1.0), tmp)
         check_invalid_face(wefm, os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "chamfered_torus.step"), tmp)
+        check_folded_loft(wefm, os.path.join(data, "folded_loft.step"), tmp)
     return 0
 
 
