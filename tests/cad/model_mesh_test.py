@@ -411,11 +411,7 @@ def check_folded_loft(wefm, path, tmp):
     25,329 triangles, 20,000 of them under a thousandth of the size in a spot 0.01 across, lambda_mesh
     0.15, exit 0. At 1/33 and 1/10 the same face gave about 1,100 to 1,700 triangles, lambda_mesh 0.94.
     Now refinement leaves a triangle across such a jump alone (free_mesh.cpp, lift_jumps)."""
-    msh, rep = os.path.join(tmp, "folded_loft.msh"), os.path.join(tmp, "folded_loft.json")
-    p = subprocess.run([wefm, "mesh-model", path, "--size-ratio", "0.025", "-o", msh, "--report", rep, "-q"],
-                       capture_output=True, text=True, timeout=120)
-    assert p.returncode == 0, (p.returncode, p.stderr[-2000:])
-    r = json.load(open(rep))
+    r, _, _ = mesh_model(wefm, path, tmp, "folded_loft")
     assert r["triangles"] < 4000 and r["lambda_mesh"] > 0.8, (r["triangles"], r["lambda_mesh"])
     print(f"folded_loft.step: {r['triangles']} triangles, lambda_mesh {r['lambda_mesh']:.3f}, min {r['lambda_min']:.3f}")
 

@@ -37,12 +37,17 @@ double largest_stretch(const SurfaceMap& map, const P2& p) {
   return std::sqrt(std::max(0.0, mid + std::sqrt(half * half + M(0, 1) * M(0, 1))));
 }
 
+// Asked for every triangle refinement would split for its size: the centre first, and the corners
+// only while the stretch seen so far leaves the 3D edges unexplained (each sample locates a facet).
 bool lift_jumps(const SurfaceMap& map, const P2& a, const P2& b, const P2& c, const Vec3& A, const Vec3& B, const Vec3& C) {
   const double uv = std::max({(a - b).norm(), (b - c).norm(), (c - a).norm()});
   const double xyz = std::max({(A - B).norm(), (B - C).norm(), (C - A).norm()});
   double stretch = 0;
-  for (const P2& p : {a, b, c, P2((a + b + c) / 3)}) stretch = std::max(stretch, largest_stretch(map, p));
-  return stretch > 0 && xyz > kLiftJump * stretch * uv;
+  for (const P2& p : {P2((a + b + c) / 3), a, b, c}) {
+    stretch = std::max(stretch, largest_stretch(map, p));
+    if (stretch > 0 && !(xyz > kLiftJump * stretch * uv)) return false;
+  }
+  return stretch > 0;
 }
 
 // Boundary nodes closer than this fraction of the domain's extent are one node: the two sides of a
